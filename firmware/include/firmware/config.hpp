@@ -1,0 +1,101 @@
+#pragma once
+// The appliance configuration: one TOML file, validated strictly against the schema in
+// config_schema.cpp (every key, its type, range and meaning in one place). Defaults come from the
+// embedded config/mirror.toml; a file and then --set overrides are layered on top.
+
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace firmware {
+
+/// The embedded default configuration (config/mirror.toml), generated at build time.
+extern const char* const kDefaultConfigToml;
+/// Where the appliance looks for its config when --config is not given.
+inline constexpr const char* kDefaultConfigPath = "/etc/mirror/mirror.toml";
+
+enum class LogLevel { Error, Warn, Info, Debug };
+
+/// Frame pacing of replayed and synthetic sources.
+struct Rate {
+    enum class Kind { Native, Max, Fixed } kind = Kind::Native;
+    double fps = 0.0;  ///< for Fixed
+};
+
+struct SourceConfig {
+    std::string spec = "auto";  ///< auto | demo | synthetic | file:PATH (later libcamera, v4l2:DEV)
+    int width = 640;            ///< capture size for cameras and the synthetic scene
+    int height = 480;
+    double fps = 30.0;          ///< synthetic scene rate; camera frame rate request
+    bool loop = true;           ///< replay files from the start when they end
+    Rate rate;                  ///< pacing of file replay: native, max or a fixed fps
+    enum class Card { Auto, On, Off } card = Card::Auto;  ///< composite the synthetic card
+};
+
+struct DisplayConfig {
+    std::string spec = "auto";  ///< auto | headless:DIR (later drm[:CARD], window)
+    int width = 1280;
+    int height = 720;
+    enum class Fit { Cover, Contain } fit = Fit::Cover;
+    bool mirror = true;
+    bool hud = true;
+    int snapshotEvery = 30;     ///< frames between automatic snapshots (headless); 0 = on command only
+};
+
+struct LogConfig {
+    LogLevel level = LogLevel::Info;
+    double summaryIntervalS = 1.0;  ///< seconds between one-line summaries; 0 = off
+};
+
+struct ConsoleConfig {
+    bool stdinEnabled = true;  ///< the shell on stdin/stdout
+    int maxLineLength = 256;   ///< longer lines are rejected with one error line
+};
+
+struct VisionConfig {
+    bool chromaticity = true;  ///< ch. 3: normalised-RGB planes for the colour trackers
+};
+
+struct Config {
+    SourceConfig source;
+    DisplayConfig display;
+    LogConfig log;
+    ConsoleConfig console;
+    VisionConfig vision;
+    std::string origin;  ///< where it came from, e.g. "/etc/mirror/mirror.toml" or "built-in defaults"
+};
+
+/// One problem found in a config file, printed as `FILE:LINE:COL: key: what is wrong (allowed: ...)`.
+struct ConfigProblem {
+    std::string file;
+    int line = 0;
+    int column = 0;
+    std::string key;      ///< dotted key, or "config" for file-level problems
+    std::string message;  ///< what is wrong, with "(allowed: ...)" where it helps
+    std::string format() const;
+};
+
+/// Thrown by loadConfig with every problem found (not just the first).
+class ConfigError : public std::runtime_error {
+public:
+    explicit ConfigError(std::vector<ConfigProblem> problems);
+    const std::vector<ConfigProblem>& problems() const noexcept { return problems_; }
+
+private:
+    std::vector<ConfigProblem> problems_;
+};
+
+struct ConfigRequest {
+    std::string path;              ///< config file; empty = kDefaultConfigPath if it exists
+    bool pathExplicit = false;     ///< given with --config: a missing file is then an error
+    std::vector<std::string> sets; ///< --set KEY=VALUE overrides, VALUE in TOML syntax
+};
+
+/// Defaults, then the file, then the overrides; validates everything. Throws ConfigError.
+Config loadConfig(const ConfigRequest& request);
+/// Parses and validates one TOML text over the defaults (used by loadConfig and tests).
+Config parseConfig(const std::string& tomlText, const std::string& fileName);
+/// The effective configuration as TOML, every key present, loadable again by loadConfig.
+std::string toToml(const Config& config);
+
+}  // namespace firmware

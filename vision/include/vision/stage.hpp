@@ -1,0 +1,34 @@
+#pragma once
+// Stage: one step of the vision pipeline, run once per frame in a fixed order. The firmware times
+// each stage; stages share results through FrameState. process() never throws and never allocates:
+// everything a stage needs is allocated in its constructor, sized from the configured resolution.
+
+#include "vision/chromaticity.hpp"
+#include "vision/image.hpp"
+
+namespace vision {
+
+/// Everything the stages know about the current frame. Reset by the pipeline for every frame.
+struct FrameState {
+    Frame frame;
+    /// False once a stage found the frame unusable; later stages then skip their work.
+    bool valid = true;
+    /// Why the frame is unusable (a static string), "" while valid.
+    const char* problem = "";
+    /// Chromaticity planes (ch. 3) when the chromaticity stage ran, empty views otherwise.
+    ChromaticityPlanes chroma{};
+};
+
+class Stage {
+public:
+    virtual ~Stage() = default;
+    Stage() = default;
+    Stage(const Stage&) = delete;
+    Stage& operator=(const Stage&) = delete;
+
+    /// Short name for timing tables and logs, e.g. "chromaticity".
+    virtual const char* name() const noexcept = 0;
+    virtual void process(FrameState& state) noexcept = 0;
+};
+
+}  // namespace vision
