@@ -22,7 +22,8 @@ class OverlayLayer {
 public:
     virtual ~OverlayLayer() = default;
     virtual const char* name() const noexcept = 0;
-    /// Draws with GL state left as the renderer set it (blending on, depth test off). Never throws.
+    /// Draws with GL state left as the renderer set it: blending on with standard (non-premultiplied)
+    /// alpha (SRC_ALPHA, ONE_MINUS_SRC_ALPHA), depth and stencil tests off. Never throws.
     virtual void draw(const LayerContext& context) noexcept = 0;
 };
 

@@ -42,7 +42,8 @@ public:
     const RendererOptions& options() const noexcept { return options_; }
 
     /// Uploads `frame` and draws everything into the bound framebuffer of the given size.
-    /// `hudText` may hold several lines separated by '\n' (printable ASCII). Never allocates.
+    /// `hudText` may hold several lines separated by '\n' (printable ASCII). An empty `frame`
+    /// redraws the last uploaded picture (black before the first). Never allocates.
     /// False on a GL error (lastError() says which).
     bool draw(const vision::ConstImageView& frame, int viewportWidth, int viewportHeight,
               const char* hudText) noexcept;
