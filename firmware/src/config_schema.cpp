@@ -1,0 +1,407 @@
+// The one table of configuration keys. See config_schema.hpp; the user-facing rendering of this
+// table is config/SCHEMA.md (config_test checks that it matches).
+
+#include "config_schema.hpp"
+
+#include <array>
+#include <charconv>
+#include <cstdio>
+#include <initializer_list>
+#include <system_error>
+#include <utility>
+
+namespace firmware::config_schema {
+
+namespace {
+
+bool asBool(const Value& v)
+{
+    return std::get<bool>(v);
+}
+int asInt(const Value& v)
+{
+    return static_cast<int>(std::get<std::int64_t>(v));
+}
+double asDouble(const Value& v)
+{
+    return std::get<double>(v);
+}
+const std::string& asText(const Value& v)
+{
+    return std::get<std::string>(v);
+}
+template <typename E>
+E asEnum(const Value& v)
+{
+    return static_cast<E>(std::get<std::int64_t>(v));
+}
+template <typename E>
+Value enumValue(E e)
+{
+    return static_cast<std::int64_t>(e);
+}
+Value intValue(int i)
+{
+    return static_cast<std::int64_t>(i);
+}
+
+/// A spec is one of `names`, or PREFIX:ARGUMENT with a non-empty argument for one of `prefixes`
+/// (each given with the word for its argument, for the message).
+std::string checkSpec(std::string_view value, std::string_view what,
+                      std::initializer_list<std::string_view> names,
+                      std::initializer_list<std::pair<std::string_view, std::string_view>> prefixes)
+{
+    for (std::string_view name : names) {
+        if (value == name) {
+            return {};
+        }
+    }
+    for (const auto& [prefix, argument] : prefixes) {
+        if (value.starts_with(prefix)) {
+            if (value.size() > prefix.size()) {
+                return {};
+            }
+            return quoted(value) + " needs a " + std::string(argument) + " after " + quoted(prefix);
+        }
+    }
+    return "unknown " + std::string(what) + " " + quoted(value);
+}
+
+// libcamera, v4l2, drm and window are accepted here so a config written for a later build still
+// validates; the source/display factories say when one is not built into this version.
+std::string checkSourceSpec(std::string_view value)
+{
+    return checkSpec(value, "source", {"auto", "demo", "synthetic", "libcamera"},
+                     {{"file:", "path"}, {"libcamera:", "camera id"}, {"v4l2:", "device path"}});
+}
+
+std::string checkDisplaySpec(std::string_view value)
+{
+    return checkSpec(value, "display", {"auto", "drm", "window"},
+                     {{"headless:", "directory"}, {"drm:", "card"}});
+}
+
+// Enum choices, in the order of the C++ enum they map to (values travel as the index).
+constexpr std::array<std::string_view, 3> kCardChoices{"auto", "on", "off"};
+constexpr std::array<std::string_view, 2> kFitChoices{"cover", "contain"};
+constexpr std::array<std::string_view, 4> kLevelChoices{"error", "warn", "info", "debug"};
+static_assert(static_cast<int>(SourceConfig::Card::Off) == 2);
+static_assert(static_cast<int>(DisplayConfig::Fit::Contain) == 1);
+static_assert(static_cast<int>(LogLevel::Debug) == 3);
+
+const KeySpec kSchema[] = {
+    // [source]
+    {.name = "source.spec",
+     .kind = Kind::String,
+     .check = checkSourceSpec,
+     .stringForms = R"("auto", "demo", "synthetic", "file:PATH", "libcamera[:ID]", "v4l2:DEVICE")",
+     .doc = "Where frames come from (file:PATH is a video, a folder of frames or a glob)",
+     .set = [](Config& c, const Value& v) { c.source.spec = asText(v); },
+     .get = [](const Config& c) -> Value { return c.source.spec; }},
+    {.name = "source.width",
+     .kind = Kind::Int,
+     .min = 16,
+     .max = 7680,
+     .even = true,
+     .doc = "Capture width in pixels for cameras and the synthetic scene",
+     .set = [](Config& c, const Value& v) { c.source.width = asInt(v); },
+     .get = [](const Config& c) { return intValue(c.source.width); }},
+    {.name = "source.height",
+     .kind = Kind::Int,
+     .min = 16,
+     .max = 4320,
+     .even = true,
+     .doc = "Capture height in pixels for cameras and the synthetic scene",
+     .set = [](Config& c, const Value& v) { c.source.height = asInt(v); },
+     .get = [](const Config& c) { return intValue(c.source.height); }},
+    {.name = "source.fps",
+     .kind = Kind::Float,
+     .min = 1,
+     .max = 240,
+     .doc = "Frame rate of the synthetic scene and the rate asked of cameras",
+     .set = [](Config& c, const Value& v) { c.source.fps = asDouble(v); },
+     .get = [](const Config& c) -> Value { return c.source.fps; }},
+    {.name = "source.loop",
+     .kind = Kind::Bool,
+     .doc = "Replay files from the start when they end",
+     .set = [](Config& c, const Value& v) { c.source.loop = asBool(v); },
+     .get = [](const Config& c) -> Value { return c.source.loop; }},
+    {.name = "source.rate",
+     .kind = Kind::Rate,
+     .min = 1,
+     .max = 240,
+     .doc = "Pacing of file replay: the file's own rate, as fast as possible, or a fixed fps",
+     .set =
+         [](Config& c, const Value& v) {
+             if (const auto* text = std::get_if<std::string>(&v)) {
+                 c.source.rate = {*text == "max" ? Rate::Kind::Max : Rate::Kind::Native, 0.0};
+             } else {
+                 c.source.rate = {Rate::Kind::Fixed, asDouble(v)};
+             }
+         },
+     .get = [](const Config& c) -> Value {
+         switch (c.source.rate.kind) {
+             case Rate::Kind::Native:
+                 return std::string("native");
+             case Rate::Kind::Max:
+                 return std::string("max");
+             case Rate::Kind::Fixed:
+                 break;
+         }
+         return c.source.rate.fps;
+     }},
+    {.name = "source.card",
+     .kind = Kind::Enum,
+     .choices = kCardChoices,
+     .doc = "Composite a synthetic coloured card over the scene (auto: on for demo and synthetic)",
+     .set = [](Config& c, const Value& v) { c.source.card = asEnum<SourceConfig::Card>(v); },
+     .get = [](const Config& c) { return enumValue(c.source.card); }},
+    // [display]
+    {.name = "display.spec",
+     .kind = Kind::String,
+     .check = checkDisplaySpec,
+     .stringForms = R"("auto", "headless:DIR", "drm[:CARD]", "window")",
+     .doc = "Where frames go (headless:DIR renders without a window system, snapshots in DIR)",
+     .set = [](Config& c, const Value& v) { c.display.spec = asText(v); },
+     .get = [](const Config& c) -> Value { return c.display.spec; }},
+    {.name = "display.width",
+     .kind = Kind::Int,
+     .min = 16,
+     .max = 7680,
+     .doc = "Output width in pixels",
+     .set = [](Config& c, const Value& v) { c.display.width = asInt(v); },
+     .get = [](const Config& c) { return intValue(c.display.width); }},
+    {.name = "display.height",
+     .kind = Kind::Int,
+     .min = 16,
+     .max = 4320,
+     .doc = "Output height in pixels",
+     .set = [](Config& c, const Value& v) { c.display.height = asInt(v); },
+     .get = [](const Config& c) { return intValue(c.display.height); }},
+    {.name = "display.fit",
+     .kind = Kind::Enum,
+     .choices = kFitChoices,
+     .doc = "Fill the screen and crop the overflow (cover) or show the whole image with bars",
+     .set = [](Config& c, const Value& v) { c.display.fit = asEnum<DisplayConfig::Fit>(v); },
+     .get = [](const Config& c) { return enumValue(c.display.fit); }},
+    {.name = "display.mirror",
+     .kind = Kind::Bool,
+     .doc = "Show the camera image left-right flipped, as a mirror does",
+     .set = [](Config& c, const Value& v) { c.display.mirror = asBool(v); },
+     .get = [](const Config& c) -> Value { return c.display.mirror; }},
+    {.name = "display.hud",
+     .kind = Kind::Bool,
+     .doc = "Show the diagnostics text (fps, stage times) in the top-left corner",
+     .set = [](Config& c, const Value& v) { c.display.hud = asBool(v); },
+     .get = [](const Config& c) -> Value { return c.display.hud; }},
+    {.name = "display.snapshot_every",
+     .kind = Kind::Int,
+     .min = 0,
+     .max = 100000,
+     .doc = "Frames between automatic snapshots on headless displays; 0 = on command only",
+     .set = [](Config& c, const Value& v) { c.display.snapshotEvery = asInt(v); },
+     .get = [](const Config& c) { return intValue(c.display.snapshotEvery); }},
+    // [log]
+    {.name = "log.level",
+     .kind = Kind::Enum,
+     .choices = kLevelChoices,
+     .doc = "Least severe message level that is logged",
+     .set = [](Config& c, const Value& v) { c.log.level = asEnum<LogLevel>(v); },
+     .get = [](const Config& c) { return enumValue(c.log.level); }},
+    {.name = "log.summary_interval_s",
+     .kind = Kind::Float,
+     .min = 0,
+     .max = 3600,
+     .doc = "Seconds between one-line summaries (frames, fps, per-stage ms); 0 = off",
+     .set = [](Config& c, const Value& v) { c.log.summaryIntervalS = asDouble(v); },
+     .get = [](const Config& c) -> Value { return c.log.summaryIntervalS; }},
+    // [console]
+    {.name = "console.stdin",
+     .kind = Kind::Bool,
+     .doc = "Run the diagnostics shell on standard input and output",
+     .set = [](Config& c, const Value& v) { c.console.stdinEnabled = asBool(v); },
+     .get = [](const Config& c) -> Value { return c.console.stdinEnabled; }},
+    {.name = "console.max_line_length",
+     .kind = Kind::Int,
+     .min = 16,
+     .max = 4096,
+     .doc = "Longest accepted shell line in bytes; longer lines get one error line",
+     .set = [](Config& c, const Value& v) { c.console.maxLineLength = asInt(v); },
+     .get = [](const Config& c) { return intValue(c.console.maxLineLength); }},
+    // [vision]
+    {.name = "vision.chromaticity",
+     .kind = Kind::Bool,
+     .doc = "Compute normalised-RGB (chromaticity) planes for the colour trackers",
+     .set = [](Config& c, const Value& v) { c.vision.chromaticity = asBool(v); },
+     .get = [](const Config& c) -> Value { return c.vision.chromaticity; }},
+};
+
+std::string range(const KeySpec& spec)
+{
+    return formatNumber(spec.min) + ".." + formatNumber(spec.max);
+}
+
+}  // namespace
+
+std::span<const KeySpec> schema()
+{
+    return kSchema;
+}
+
+const KeySpec* findKey(std::string_view dottedName)
+{
+    for (const KeySpec& spec : kSchema) {
+        if (spec.name == dottedName) {
+            return &spec;
+        }
+    }
+    return nullptr;
+}
+
+std::vector<std::string_view> sections()
+{
+    std::vector<std::string_view> names;
+    for (const KeySpec& spec : kSchema) {
+        if (names.empty() || names.back() != spec.section()) {
+            names.push_back(spec.section());
+        }
+    }
+    return names;
+}
+
+std::string keysOf(std::string_view section)
+{
+    std::string list;
+    for (const KeySpec& spec : kSchema) {
+        if (spec.section() == section) {
+            list += (list.empty() ? "" : ", ") + std::string(spec.key());
+        }
+    }
+    return list;
+}
+
+std::string_view typeName(const KeySpec& spec)
+{
+    switch (spec.kind) {
+        case Kind::Bool:
+            return "boolean";
+        case Kind::Int:
+            return "integer";
+        case Kind::Float:
+            return "float";
+        case Kind::String:
+        case Kind::Enum:
+            return "string";
+        case Kind::Rate:
+            return "string or number";
+    }
+    return "?";
+}
+
+std::string allowed(const KeySpec& spec)
+{
+    switch (spec.kind) {
+        case Kind::Bool:
+            return "true, false";
+        case Kind::Int:
+            return (spec.even ? "even numbers " : "") + range(spec);
+        case Kind::Float:
+            return range(spec);
+        case Kind::String:
+            return std::string(spec.stringForms);
+        case Kind::Enum: {
+            std::string list;
+            for (std::string_view choice : spec.choices) {
+                list += (list.empty() ? "" : ", ") + quoted(choice);
+            }
+            return list;
+        }
+        case Kind::Rate:
+            return R"("native", "max" or a number )" + range(spec);
+    }
+    return {};
+}
+
+std::string formatValue(const KeySpec& spec, const Value& value)
+{
+    switch (spec.kind) {
+        case Kind::Bool:
+            return asBool(value) ? "true" : "false";
+        case Kind::Int:
+            return std::to_string(std::get<std::int64_t>(value));
+        case Kind::Float: {
+            // A float key must print as a TOML float (30.0, not 30) so the type survives a reload.
+            std::string text = formatNumber(asDouble(value));
+            if (text.find_first_of(".eEni") == std::string::npos) {
+                text += ".0";
+            }
+            return text;
+        }
+        case Kind::String:
+            return quoted(asText(value));
+        case Kind::Enum: {
+            const auto index = static_cast<std::size_t>(std::get<std::int64_t>(value));
+            return quoted(index < spec.choices.size() ? spec.choices[index] : "?");
+        }
+        case Kind::Rate:
+            if (const auto* text = std::get_if<std::string>(&value)) {
+                return quoted(*text);
+            }
+            return formatNumber(asDouble(value));  // an integral rate prints as an integer: fine
+    }
+    return {};
+}
+
+std::string quoted(std::string_view text)
+{
+    std::string out = "\"";
+    for (const char ch : text) {
+        const auto byte = static_cast<unsigned char>(ch);
+        switch (ch) {
+            case '"':
+                out += "\\\"";
+                break;
+            case '\\':
+                out += "\\\\";
+                break;
+            case '\b':
+                out += "\\b";
+                break;
+            case '\t':
+                out += "\\t";
+                break;
+            case '\n':
+                out += "\\n";
+                break;
+            case '\f':
+                out += "\\f";
+                break;
+            case '\r':
+                out += "\\r";
+                break;
+            default:
+                if (byte < 0x20 || byte == 0x7f) {
+                    char escape[8];
+                    std::snprintf(escape, sizeof escape, "\\u%04X", static_cast<unsigned>(byte));
+                    out += escape;
+                } else {
+                    out += ch;  // UTF-8 passes through: TOML strings are UTF-8
+                }
+        }
+    }
+    return out + "\"";
+}
+
+std::string formatNumber(double value)
+{
+    // Plain digits read best ("100000", not "1e+05"); exponents only for very large or small
+    // values.
+    char text[64];
+    auto result = std::to_chars(text, text + sizeof text, value, std::chars_format::fixed);
+    if (result.ec != std::errc() || result.ptr - text > 20) {
+        result = std::to_chars(text, text + sizeof text, value);
+    }
+    return std::string(text, result.ptr);
+}
+
+}  // namespace firmware::config_schema
