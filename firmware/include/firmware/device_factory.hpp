@@ -1,0 +1,21 @@
+#pragma once
+// Builds the frame source and the display named by the config's specs ("auto", "demo",
+// "synthetic", "file:PATH", "headless:DIR", ...). One implementation per device, chosen here only.
+
+#include "firmware/config.hpp"
+#include "platform/display.hpp"
+#include "platform/frame_source.hpp"
+
+#include <memory>
+
+namespace firmware {
+
+/// Debian's opencv-doc sample video, the real scene of the demo (a face; 720x528).
+inline constexpr const char* kDemoVideoPath = "/usr/share/doc/opencv-doc/examples/data/Megamind.avi";
+
+/// Opens the source. Throws StartupError(kExitSource) with one line on failure.
+std::unique_ptr<platform::FrameSource> makeSource(const SourceConfig& config);
+/// Opens the display. Throws StartupError(kExitDisplay) with one line on failure.
+std::unique_ptr<platform::Display> makeDisplay(const DisplayConfig& config);
+
+}  // namespace firmware

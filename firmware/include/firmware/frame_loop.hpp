@@ -1,0 +1,110 @@
+#pragma once
+// FrameLoop: the appliance's main loop. Per frame: poll the console, take a frame from the source,
+// run the vision stages, draw with the renderer, present on the display; time every step.
+//
+// Ownership: the loop owns the source, the display, the pipeline (and through it every stage buffer)
+// and the renderer; all of them are built before the first frame. step() never throws and never
+// allocates: device errors become states (source lost, display unavailable) that are logged once when
+// they begin and once when they end.
+
+#include "firmware/command_shell.hpp"
+#include "firmware/config.hpp"
+#include "firmware/latency_histogram.hpp"
+#include "platform/console.hpp"
+#include "platform/display.hpp"
+#include "platform/frame_source.hpp"
+#include "render/renderer.hpp"
+#include "vision/pipeline.hpp"
+
+#include <array>
+#include <atomic>
+#include <cstdint>
+#include <memory>
+#include <string>
+
+namespace firmware {
+
+/// Timing of one named step of the frame: since start, and since the last summary.
+struct StepTiming {
+    const char* name = "";
+    LatencyHistogram total;
+    LatencyHistogram interval;
+};
+
+class FrameLoop {
+public:
+    static constexpr std::size_t kMaxSteps = vision::Pipeline::kMaxStages + 3;
+
+    /// Builds the pipeline and renderer for the source's size and format. Throws on failure.
+    FrameLoop(const Config& config, std::unique_ptr<platform::FrameSource> source,
+              std::unique_ptr<platform::Display> display);
+    ~FrameLoop();
+    FrameLoop(const FrameLoop&) = delete;
+    FrameLoop& operator=(const FrameLoop&) = delete;
+
+    /// The console the shell reads commands from and answers on (not owned; may be null).
+    void attachConsole(platform::Console* console) noexcept { console_ = console; }
+
+    /// Runs until `maxFrames` frames were shown (0 = no limit), `quit`, requestStop(), or the end of
+    /// a finite source. Returns an exit code (kExitOk when it stopped as asked).
+    int run(std::uint64_t maxFrames) noexcept;
+    /// One iteration. False when the loop should stop.
+    bool step() noexcept;
+    /// Safe from a signal handler.
+    void requestStop() noexcept { stop_.store(true); }
+
+    std::uint64_t framesShown() const noexcept { return framesShown_; }
+    std::uint64_t badFrames() const noexcept { return badFrames_; }
+    const vision::FrameState& lastFrameState() const noexcept { return state_; }
+    platform::Display& display() noexcept { return *display_; }
+    render::Renderer& renderer() noexcept { return *renderer_; }
+    CommandShell& shell() noexcept { return shell_; }
+    /// Frames per second over the last summary interval.
+    double fps() const noexcept { return fps_; }
+    /// Writes the status report (as the `status` command prints it).
+    void formatStatus(Reply& reply) const noexcept;
+
+private:
+    void registerCommands();
+    void stepSource() noexcept;
+    void noteSourceStatus(platform::SourceStatus status) noexcept;
+    void updateRate(std::int64_t nowNs) noexcept;
+    void writeSummary() noexcept;
+    void formatHud() noexcept;
+    StepTiming& timing(std::size_t i) noexcept { return timings_[i]; }
+
+    Config config_;
+    std::string configToml_;  // effective config, rendered once at start-up for `config`
+    std::unique_ptr<platform::FrameSource> source_;
+    std::unique_ptr<platform::Display> display_;
+    std::unique_ptr<render::Renderer> renderer_;
+    vision::Pipeline pipeline_;
+    vision::FrameState state_;
+    vision::Frame frame_;
+    CommandShell shell_;
+    platform::Console* console_ = nullptr;
+
+    // Steps: [0] capture, [1..n] vision stages, then render, present.
+    std::array<StepTiming, kMaxSteps> timings_{};
+    std::size_t stepCount_ = 0;
+    std::size_t renderStep_ = 0;
+    std::size_t presentStep_ = 0;
+
+    std::atomic<bool> stop_{false};
+    bool sourceEnded_ = false;
+    bool sourceLost_ = false;
+    bool frameBad_ = false;
+    bool displayDown_ = false;
+    bool snapshotReplyPending_ = false;
+    std::uint64_t framesShown_ = 0;
+    std::uint64_t badFrames_ = 0;
+    std::uint64_t lostPolls_ = 0;
+    std::int64_t startNs_ = 0;
+    std::int64_t intervalStartNs_ = 0;
+    std::uint64_t intervalFrames_ = 0;
+    double fps_ = 0.0;
+    int summaryFd_ = -1;
+    char hud_[256] = "";
+};
+
+}  // namespace firmware

@@ -1,0 +1,26 @@
+#pragma once
+// Logging for the firmware: one line per event, "[   12.345] W source: camera lost: ...", to stderr,
+// filtered by level. Formatting uses a fixed buffer and one write(2): safe in the frame loop (no
+// allocation, no locks beyond the kernel's). Platform and render code do not log; they return
+// states and the firmware logs what changed.
+
+#include "firmware/config.hpp"
+
+namespace firmware {
+
+void setLogLevel(LogLevel level) noexcept;
+LogLevel logLevel() noexcept;
+/// Redirects log output (tests); default is standard error (fd 2).
+void setLogFd(int fd) noexcept;
+
+void logf(LogLevel level, const char* format, ...) noexcept __attribute__((format(printf, 2, 3)));
+
+/// Seconds since the process started, for log stamps and uptime.
+double uptimeSeconds() noexcept;
+
+}  // namespace firmware
+
+#define MIRROR_LOG_ERROR(...) ::firmware::logf(::firmware::LogLevel::Error, __VA_ARGS__)
+#define MIRROR_LOG_WARN(...) ::firmware::logf(::firmware::LogLevel::Warn, __VA_ARGS__)
+#define MIRROR_LOG_INFO(...) ::firmware::logf(::firmware::LogLevel::Info, __VA_ARGS__)
+#define MIRROR_LOG_DEBUG(...) ::firmware::logf(::firmware::LogLevel::Debug, __VA_ARGS__)

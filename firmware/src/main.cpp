@@ -1,0 +1,175 @@
+// mirror: the smart mirror appliance firmware. Parses the command line and the config, opens the
+// source and the display, and runs the frame loop. Every start-up failure is caught here, once,
+// and printed as one line with a distinct exit code (firmware/exit_codes.hpp).
+
+#include "firmware/config.hpp"
+#include "firmware/device_factory.hpp"
+#include "firmware/exit_codes.hpp"
+#include "firmware/frame_loop.hpp"
+#include "firmware/log.hpp"
+#include "firmware/startup_error.hpp"
+#include "platform/stdin_console.hpp"
+
+#include <CLI/CLI.hpp>
+
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <csignal>
+#include <cstdint>
+#include <cstdio>
+#include <iostream>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace {
+
+firmware::FrameLoop* gLoop = nullptr;
+
+/// A TOML basic string holding `text` (for turning --source/--display into --set overrides).
+std::string tomlQuote(const std::string& text)
+{
+    std::string out = "\"";
+    for (const unsigned char c : text) {
+        if (c == '"' || c == '\\') {
+            out += '\\';
+            out += static_cast<char>(c);
+        } else if (c < 0x20 || c == 0x7f) {
+            char esc[8];
+            std::snprintf(esc, sizeof esc, "\\u%04x", c);
+            out += esc;
+        } else {
+            out += static_cast<char>(c);
+        }
+    }
+    return out + "\"";
+}
+
+/// Makes sure fds 0, 1 and 2 are open (on /dev/null if need be) before any device is opened, so a
+/// device can never land on fd 0 and be read as the console.
+void ensureStandardFds()
+{
+    for (int fd = 0; fd <= 2; ++fd)
+        if (::fcntl(fd, F_GETFD) < 0) {
+            const int opened = ::open("/dev/null", fd == 0 ? O_RDONLY : O_WRONLY);
+            if (opened >= 0 && opened != fd) {
+                ::dup2(opened, fd);
+                ::close(opened);
+            }
+        }
+}
+
+extern "C" void onStopSignal(int)
+{
+    if (gLoop)
+        gLoop->requestStop();
+}
+
+const char* const kFooter = R"(
+Sources (--source, [source] spec):
+  auto          the camera when one is supported and present, else the demo scene
+  demo          Debian's opencv-doc sample video Megamind.avi with a synthetic coloured card moving
+                over it; the fully synthetic scene when the video is not installed
+  synthetic     a procedural scene (no files needed)
+  file:PATH     a video file, a folder of PNG/JPEG frames, or a glob ("file:/data/f*.png");
+                [source] loop and rate ("native", "max" or an fps number) control replay
+
+Displays (--display, [display] spec):
+  auto          the best display present (for now: headless in $STATE_DIRECTORY or /var/lib/mirror)
+  headless:DIR  EGL without a window system (Mesa's software renderer when no GPU); PNG snapshots
+                in DIR every [display] snapshot_every frames and on the console's `snapshot`, and a
+                one-line summary per second in DIR/summary.log
+
+Diagnostics console (on standard input when [console] stdin = true):
+  help, status, snapshot, config, quit
+
+Config: TOML, validated strictly; every problem is printed as FILE:LINE:COL: key: what is wrong.
+  The schema with every key is in config/SCHEMA.md; --print-config shows the effective values.
+
+Exit codes:
+  0 stopped as asked   2 bad command line or config   3 source failed   4 display failed
+  5 pipeline or renderer failed   1 internal error
+)";
+
+}  // namespace
+
+int main(int argc, char** argv)
+{
+    ensureStandardFds();
+    CLI::App app{"mirror: smart mirror appliance firmware (shows you mirrored, tracks faces and a "
+                 "coloured card, draws overlays)",
+                 "mirror"};
+    app.footer(kFooter);
+    app.set_version_flag("--version", "mirror " MIRROR_VERSION);
+
+    std::string configPath;
+    bool printConfig = false;
+    std::string source;
+    std::string display;
+    std::uint64_t frames = 0;
+    std::vector<std::string> sets;
+    app.add_option("-c,--config", configPath,
+                   std::string("config file (default ") + firmware::kDefaultConfigPath +
+                       "; built-in defaults when that is absent)");
+    app.add_flag("--print-config", printConfig, "print the effective config as TOML and exit");
+    app.add_option("-s,--source", source, "frame source SPEC (overrides [source] spec)");
+    app.add_option("-d,--display", display, "display SPEC (overrides [display] spec)");
+    app.add_option("-n,--frames", frames, "stop after N frames (0 = run until stopped)");
+    app.add_option("--set", sets, "override one config key: --set display.hud=false (TOML value)");
+
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::ParseError& e) {
+        const int code = app.exit(e);
+        return code == 0 ? firmware::kExitOk : firmware::kExitConfig;
+    }
+
+    firmware::ConfigRequest request;
+    request.path = configPath;
+    request.pathExplicit = !configPath.empty();
+    request.sets = sets;
+    if (!source.empty())
+        request.sets.push_back("source.spec = " + tomlQuote(source));
+    if (!display.empty())
+        request.sets.push_back("display.spec = " + tomlQuote(display));
+
+    firmware::Config config;
+    try {
+        config = firmware::loadConfig(request);
+    } catch (const firmware::ConfigError& e) {
+        for (const auto& problem : e.problems())
+            std::cerr << problem.format() << '\n';
+        return firmware::kExitConfig;
+    }
+    if (printConfig) {
+        std::cout << "# effective configuration (from " << config.origin << ")\n"
+                  << firmware::toToml(config);
+        return firmware::kExitOk;
+    }
+
+    firmware::setLogLevel(config.log.level);
+    std::signal(SIGPIPE, SIG_IGN);
+    try {
+        auto frameSource = firmware::makeSource(config.source);
+        auto frameDisplay = firmware::makeDisplay(config.display);
+        firmware::FrameLoop loop(config, std::move(frameSource), std::move(frameDisplay));
+        std::unique_ptr<platform::StdinConsole> console;
+        if (config.console.stdinEnabled) {
+            console = std::make_unique<platform::StdinConsole>();
+            loop.attachConsole(console.get());
+        }
+        gLoop = &loop;
+        std::signal(SIGINT, onStopSignal);
+        std::signal(SIGTERM, onStopSignal);
+        const int code = loop.run(frames);
+        gLoop = nullptr;
+        return code;
+    } catch (const firmware::StartupError& e) {
+        std::cerr << "mirror: " << e.what() << '\n';
+        return e.exitCode();
+    } catch (const std::exception& e) {
+        std::cerr << "mirror: " << e.what() << '\n';
+        return firmware::kExitPipeline;
+    }
+}

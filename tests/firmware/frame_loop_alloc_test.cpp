@@ -1,0 +1,72 @@
+// Must-hold of the skeleton: zero heap allocations per frame in the steady-state loop
+// (synthetic source -> vision -> render -> headless display), counted over 300 frames.
+#include "alloc_counter.hpp"
+#include "fake_console.hpp"
+#include "firmware/device_factory.hpp"
+#include "firmware/frame_loop.hpp"
+#include "firmware/log.hpp"
+#include "test_paths.hpp"
+
+#include <gtest/gtest.h>
+
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <cstdio>
+
+namespace {
+
+TEST(FrameLoopAllocations, SteadyStateLoopMakesNoHeapAllocations)
+{
+    if (!testing_support::allocationCountingAvailable())
+        GTEST_SKIP() << "allocation hooks are not compiled in sanitizer builds";
+
+    firmware::Config config;
+    config.source.spec = "synthetic";
+    config.source.rate.kind = firmware::Rate::Kind::Max;
+    config.source.card = firmware::SourceConfig::Card::On;
+    config.display.spec = "headless:" + testing_support::freshOutputDir("frame_loop_alloc");
+    config.display.width = 640;
+    config.display.height = 360;
+    config.display.hud = true;
+    config.display.snapshotEvery = 100;  // snapshots inside the counted frames too
+    config.log.summaryIntervalS = 0.05;  // summaries inside the counted frames too
+    const int devNull = ::open("/dev/null", O_WRONLY);
+    firmware::setLogFd(devNull);
+
+    firmware::FrameLoop loop(config, firmware::makeSource(config.source),
+                             firmware::makeDisplay(config.display));
+    FakeConsole console;
+    loop.attachConsole(&console);
+
+    // Warm up: first frames create driver state, caches and the first snapshot.
+    for (int i = 0; i < 30; ++i)
+        ASSERT_TRUE(loop.step());
+
+    testing_support::AllocationCounts counts;
+    {
+        testing_support::AllocationScope scope;
+        for (int i = 0; i < 300; ++i) {
+            // The console path is part of the loop: a command every 50 frames.
+            if (i % 50 == 10)
+                console.type(i % 100 == 10 ? "status\n" : "snapshot\nhelp\n");
+            if (!loop.step())
+                break;
+        }
+        counts = scope.counts();
+    }
+    firmware::setLogFd(2);
+    ::close(devNull);
+
+    EXPECT_EQ(loop.framesShown(), 330u);
+    EXPECT_NE(console.output().find("stage"), std::string_view::npos) << console.output();
+    EXPECT_NE(console.output().find("snapshot: "), std::string_view::npos) << console.output();
+    std::printf("allocations over 300 frames: operator new %ld, our malloc %ld, "
+                "GL driver and other shared libraries %ld (%.1f per frame)\n",
+                counts.cxxNew, counts.ownMalloc, counts.foreignMalloc,
+                static_cast<double>(counts.foreignMalloc) / 300.0);
+    EXPECT_EQ(counts.cxxNew, 0);
+    EXPECT_EQ(counts.ownMalloc, 0);
+}
+
+}  // namespace

@@ -1,0 +1,136 @@
+// End to end through the real binary: frames replayed from files come out of the headless display
+// mirrored left-right; bad sources and displays fail fast with one clear line and their exit code.
+#include "firmware/exit_codes.hpp"
+#include "test_paths.hpp"
+
+#include <gtest/gtest.h>
+#include <opencv2/core.hpp>
+#include <opencv2/imgcodecs.hpp>
+
+#include <sys/wait.h>
+
+#include <algorithm>
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <random>
+#include <string>
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct RunResult {
+    int exitCode = -1;
+    std::string output;  // stdout and stderr together
+};
+
+RunResult runMirror(const std::string& args)
+{
+    const std::string command =
+        testing_support::binaryDir() + "/bin/mirror " + args + " </dev/null 2>&1";
+    RunResult result;
+    FILE* pipe = ::popen(command.c_str(), "r");
+    if (!pipe)
+        return result;
+    std::array<char, 4096> buffer{};
+    std::size_t n;
+    while ((n = std::fread(buffer.data(), 1, buffer.size(), pipe)) > 0)
+        result.output.append(buffer.data(), n);
+    const int status = ::pclose(pipe);
+    result.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    return result;
+}
+
+/// Distinct, left-right asymmetric frames: per-pixel noise over a horizontal ramp.
+std::vector<cv::Mat> writeFrames(const std::string& dir, int count, int width, int height)
+{
+    std::mt19937 rng(7);
+    std::uniform_int_distribution<int> noise(0, 60);
+    std::vector<cv::Mat> frames;
+    for (int i = 0; i < count; ++i) {
+        cv::Mat img(height, width, CV_8UC3);
+        for (int y = 0; y < height; ++y)
+            for (int x = 0; x < width; ++x)
+                img.at<cv::Vec3b>(y, x) = cv::Vec3b(
+                    static_cast<uchar>(x * 180 / width + noise(rng)),
+                    static_cast<uchar>(y * 180 / height + noise(rng)),
+                    static_cast<uchar>((i * 40 + noise(rng)) % 256));
+        char name[64];
+        std::snprintf(name, sizeof name, "/frame-%03d.png", i);
+        cv::imwrite(dir + name, img);
+        frames.push_back(img);
+    }
+    return frames;
+}
+
+TEST(MirrorEndToEnd, HeadlessOutputIsTheInputMirroredLeftRight)
+{
+    const std::string in = testing_support::freshOutputDir("e2e_in");
+    const std::string out = testing_support::freshOutputDir("e2e_out");
+    const auto frames = writeFrames(in, 4, 160, 120);
+
+    const RunResult r = runMirror(
+        "--source file:" + in + " --display headless:" + out +
+        " --frames 4 --set display.width=160 --set display.height=120 --set display.hud=false"
+        " --set display.snapshot_every=1 --set 'source.rate=\"max\"' --set source.loop=false"
+        " --set 'source.card=\"off\"' --set console.stdin=false");
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+
+    for (int i = 0; i < 4; ++i) {
+        char name[64];
+        std::snprintf(name, sizeof name, "/snapshot-%06d.png", i);
+        const cv::Mat shot = cv::imread(out + name, cv::IMREAD_COLOR);
+        ASSERT_FALSE(shot.empty()) << "missing " << out << name << "\n" << r.output;
+        cv::Mat expected;
+        cv::flip(frames[static_cast<std::size_t>(i)], expected, 1);
+        cv::Mat diff;
+        cv::absdiff(shot, expected, diff);
+        double worst = 0;
+        cv::minMaxLoc(diff.reshape(1), nullptr, &worst);
+        EXPECT_LE(worst, 2.0) << "frame " << i << " differs from the mirrored input";
+        // And it really is mirrored, not the identity.
+        cv::absdiff(shot, frames[static_cast<std::size_t>(i)], diff);
+        EXPECT_GT(cv::mean(diff)[0], 10.0);
+    }
+    EXPECT_TRUE(fs::exists(out + "/summary.log"));
+}
+
+TEST(MirrorEndToEnd, MissingSourceFileFailsFastWithExitCode3)
+{
+    const RunResult r = runMirror("--source file:DOES_NOT_EXIST --display headless:" +
+                                  testing_support::freshOutputDir("e2e_nosource"));
+    EXPECT_EQ(r.exitCode, firmware::kExitSource) << r.output;
+    EXPECT_NE(r.output.find("DOES_NOT_EXIST"), std::string::npos) << r.output;
+    EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
+}
+
+TEST(MirrorEndToEnd, UnwritableDisplayFolderFailsFastWithExitCode4)
+{
+    for (const char* dir : {"/unwritable", "/proc/mirror-out"}) {
+        const RunResult r = runMirror(std::string("--source synthetic --display headless:") + dir);
+        EXPECT_EQ(r.exitCode, firmware::kExitDisplay) << dir << ": " << r.output;
+        EXPECT_NE(r.output.find(dir), std::string::npos) << r.output;
+        EXPECT_FALSE(fs::exists(dir) && std::string(dir) == "/unwritable");
+    }
+}
+
+TEST(MirrorEndToEnd, HelpAndPrintConfigExitZero)
+{
+    const RunResult help = runMirror("--help");
+    EXPECT_EQ(help.exitCode, 0);
+    EXPECT_NE(help.output.find("--source"), std::string::npos);
+    EXPECT_NE(help.output.find("Exit codes"), std::string::npos);
+    const RunResult cfg = runMirror("--print-config --set display.hud=false");
+    EXPECT_EQ(cfg.exitCode, 0) << cfg.output;
+    EXPECT_NE(cfg.output.find("hud = false"), std::string::npos) << cfg.output;
+}
+
+TEST(MirrorEndToEnd, BadCommandLineIsExitCode2)
+{
+    EXPECT_EQ(runMirror("--no-such-option").exitCode, firmware::kExitConfig);
+    EXPECT_EQ(runMirror("--frames lots").exitCode, firmware::kExitConfig);
+    EXPECT_EQ(runMirror("--config /nonexistent/mirror.toml").exitCode, firmware::kExitConfig);
+}
+
+}  // namespace

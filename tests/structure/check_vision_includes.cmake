@@ -1,0 +1,18 @@
+# Fails when a file of the vision core includes a header of a device, GL or OpenCV: the core must
+# stay portable (one ARM core, no GPU) and testable without any of them. Run with -DVISION_DIR=...
+file(GLOB_RECURSE files "${VISION_DIR}/*.hpp" "${VISION_DIR}/*.cpp" "${VISION_DIR}/*.h")
+set(bad "")
+foreach(f ${files})
+  file(STRINGS "${f}" lines REGEX "^[ \t]*#[ \t]*include[ \t]*[<\"]")
+  foreach(line ${lines})
+    if(line MATCHES "[<\"](opencv|GL|GLES|EGL|gbm|drm|xf86drm|libcamera|linux/|gpiod|sys/ioctl|toml|CLI|platform/|render/|firmware/)")
+      list(APPEND bad "${f}: ${line}")
+    endif()
+  endforeach()
+endforeach()
+if(bad)
+  list(JOIN bad "\n" text)
+  message(FATAL_ERROR "vision/ must not include device, GL, OpenCV or higher-module headers:\n${text}")
+endif()
+list(LENGTH files n)
+message(STATUS "vision/: ${n} files checked, no forbidden includes")
