@@ -432,7 +432,9 @@ std::string joinLines(const std::vector<ConfigProblem>& problems)
 {
     std::string text;
     for (const ConfigProblem& problem : problems) {
-        text += (text.empty() ? "" : "\n") + problem.format();
+        if (!text.empty())
+            text += '\n';
+        text += problem.format();
     }
     return text;
 }
