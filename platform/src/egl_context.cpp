@@ -1,6 +1,8 @@
 #include "platform/egl_context.hpp"
 
 #include <EGL/eglext.h>
+#include <dlfcn.h>
+#include <link.h>
 
 #include <cstdio>
 #include <cstring>
@@ -61,6 +63,21 @@ bool releaseDisplay(EGLDisplay display) noexcept
     return true;
 }
 
+/// Keeps the GL driver that eglInitialize loaded (Mesa's *_dri.so or libgallium) in memory for the
+/// life of the process. Without this, eglTerminate unloads it and every pipeline restart loads and
+/// JIT-initialises it again; it also keeps the driver's symbols available to leak reports.
+void pinLoadedGlDrivers() noexcept
+{
+    dl_iterate_phdr(
+        [](dl_phdr_info* info, std::size_t, void*) -> int {
+            const char* name = info->dlpi_name;
+            if (name && *name && (std::strstr(name, "_dri.so") || std::strstr(name, "libgallium")))
+                dlopen(name, RTLD_NOW | RTLD_NOLOAD | RTLD_NODELETE);
+            return 0;
+        },
+        nullptr);
+}
+
 /// Initialises `display`; on failure returns the reason and leaves it unusable.
 std::string initializeDisplay(EGLDisplay display)
 {
@@ -70,6 +87,7 @@ std::string initializeDisplay(EGLDisplay display)
     EGLint minor = 0;
     if (!eglInitialize(display, &major, &minor))
         return "eglInitialize failed (" + lastEglError() + ")";
+    pinLoadedGlDrivers();
     return {};
 }
 

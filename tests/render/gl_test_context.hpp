@@ -2,8 +2,8 @@
 // GlTestContext: a surfaceless EGL GLES2 context (Mesa llvmpipe headless) with a bound RGBA8
 // framebuffer object, and read-back of its pixels, for render tests only.
 
-#include <EGL/egl.h>
-#include <EGL/eglext.h>
+#include "platform/egl_context.hpp"
+
 #include <GLES2/gl2.h>
 #include <GLES2/gl2ext.h>
 
@@ -27,26 +27,8 @@ public:
     /// Creates the context, makes it current and binds a width x height framebuffer.
     GlTestContext(int width, int height)
     {
-        const auto getPlatformDisplay = reinterpret_cast<PFNEGLGETPLATFORMDISPLAYEXTPROC>(
-            eglGetProcAddress("eglGetPlatformDisplayEXT"));
-        if (getPlatformDisplay == nullptr)
-            fail("eglGetPlatformDisplayEXT is not available");
-        display_ = getPlatformDisplay(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
-        if (display_ == EGL_NO_DISPLAY || !eglInitialize(display_, nullptr, nullptr))
-            fail("no surfaceless EGL display");
-        if (!eglBindAPI(EGL_OPENGL_ES_API))
-            fail("eglBindAPI(EGL_OPENGL_ES_API)");
-        const EGLint configAttributes[] = {EGL_SURFACE_TYPE, EGL_PBUFFER_BIT, EGL_RENDERABLE_TYPE,
-                                           EGL_OPENGL_ES2_BIT, EGL_NONE};
-        EGLConfig config = nullptr;
-        EGLint count = 0;
-        if (!eglChooseConfig(display_, configAttributes, &config, 1, &count) || count < 1)
-            fail("no GLES2 EGL config");
-        const EGLint contextAttributes[] = {EGL_CONTEXT_CLIENT_VERSION, 2, EGL_NONE};
-        context_ = eglCreateContext(display_, config, EGL_NO_CONTEXT, contextAttributes);
-        if (context_ == EGL_NO_CONTEXT)
-            fail("eglCreateContext");
-        if (!eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, context_))
+        // The same surfaceless context the headless display uses (platform/egl_context.hpp).
+        if (!egl_.makeCurrent())
             fail("eglMakeCurrent without a surface");
         glGenFramebuffers(1, &framebuffer_);
         glGenRenderbuffers(1, &renderbuffer_);
@@ -55,14 +37,9 @@ public:
 
     ~GlTestContext()
     {
-        if (context_ != EGL_NO_CONTEXT) {
-            glDeleteFramebuffers(1, &framebuffer_);
-            glDeleteRenderbuffers(1, &renderbuffer_);
-            eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
-            eglDestroyContext(display_, context_);
-        }
-        if (display_ != EGL_NO_DISPLAY)
-            eglTerminate(display_);
+        glDeleteFramebuffers(1, &framebuffer_);
+        glDeleteRenderbuffers(1, &renderbuffer_);
+        egl_.releaseCurrent();
     }
 
     GlTestContext(const GlTestContext&) = delete;
@@ -118,8 +95,7 @@ private:
         return text;
     }
 
-    EGLDisplay display_ = EGL_NO_DISPLAY;
-    EGLContext context_ = EGL_NO_CONTEXT;
+    platform::EglContext egl_;
     GLuint framebuffer_ = 0;
     GLuint renderbuffer_ = 0;
     int width_ = 0;
