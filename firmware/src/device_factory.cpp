@@ -24,9 +24,12 @@ bool startsWith(std::string_view s, std::string_view prefix)
 platform::ReplayRate replayRate(const Rate& rate)
 {
     switch (rate.kind) {
-    case Rate::Kind::Native: return platform::ReplayRate::native();
-    case Rate::Kind::Max: return platform::ReplayRate::max();
-    case Rate::Kind::Fixed: return platform::ReplayRate::fixed(rate.fps);
+        case Rate::Kind::Native:
+            return platform::ReplayRate::native();
+        case Rate::Kind::Max:
+            return platform::ReplayRate::max();
+        case Rate::Kind::Fixed:
+            return platform::ReplayRate::fixed(rate.fps);
     }
     return platform::ReplayRate::native();
 }
@@ -35,9 +38,12 @@ platform::ReplayRate replayRate(const Rate& rate)
 double syntheticFps(const SourceConfig& c)
 {
     switch (c.rate.kind) {
-    case Rate::Kind::Max: return 0.0;
-    case Rate::Kind::Fixed: return c.rate.fps;
-    case Rate::Kind::Native: return c.fps;
+        case Rate::Kind::Max:
+            return 0.0;
+        case Rate::Kind::Fixed:
+            return c.rate.fps;
+        case Rate::Kind::Native:
+            return c.fps;
     }
     return c.fps;
 }
@@ -45,8 +51,8 @@ double syntheticFps(const SourceConfig& c)
 std::unique_ptr<platform::FrameSource> withCard(std::unique_ptr<platform::FrameSource> scene,
                                                 const SourceConfig& c, bool cardByDefault)
 {
-    const bool card = c.card == SourceConfig::Card::On ||
-                      (c.card == SourceConfig::Card::Auto && cardByDefault);
+    const bool card =
+        c.card == SourceConfig::Card::On || (c.card == SourceConfig::Card::Auto && cardByDefault);
     if (!card)
         return scene;
     return std::make_unique<platform::CardSceneSource>(std::move(scene));
@@ -56,9 +62,9 @@ std::unique_ptr<platform::FrameSource> openSource(const SourceConfig& c)
 {
     const std::string& spec = c.spec;
     if (spec == "synthetic")
-        return withCard(std::make_unique<platform::SyntheticSource>(c.width, c.height,
-                                                                    syntheticFps(c)),
-                        c, true);
+        return withCard(
+            std::make_unique<platform::SyntheticSource>(c.width, c.height, syntheticFps(c)), c,
+            true);
     if (startsWith(spec, "file:"))
         return withCard(std::make_unique<platform::FileSource>(spec.substr(5), c.loop,
                                                                replayRate(c.rate), c.fps),
@@ -73,9 +79,9 @@ std::unique_ptr<platform::FrameSource> openSource(const SourceConfig& c)
                             c, true);
         MIRROR_LOG_INFO("demo video %s not installed (package opencv-doc): synthetic scene",
                         kDemoVideoPath);
-        return withCard(std::make_unique<platform::SyntheticSource>(c.width, c.height,
-                                                                    syntheticFps(c)),
-                        c, true);
+        return withCard(
+            std::make_unique<platform::SyntheticSource>(c.width, c.height, syntheticFps(c)), c,
+            true);
     }
     throw StartupError(kExitSource, "source " + spec +
                                         ": not supported by this build (allowed: auto, demo, "
@@ -113,8 +119,7 @@ std::unique_ptr<platform::Display> makeDisplay(const DisplayConfig& config)
     try {
         if (startsWith(spec, "headless:"))
             return std::make_unique<platform::HeadlessDisplay>(spec.substr(9), config.width,
-                                                               config.height,
-                                                               config.snapshotEvery);
+                                                               config.height, config.snapshotEvery);
     } catch (const std::exception& e) {
         throw StartupError(kExitDisplay, e.what());
     }

@@ -8,6 +8,7 @@
 #include <fcntl.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
@@ -60,6 +61,7 @@ FrameLoop::FrameLoop(const Config& config, std::unique_ptr<platform::FrameSource
         throw std::runtime_error(std::string("display: ") + display_->lastError());
     renderer_ = std::make_unique<render::Renderer>(size, format, rendererOptions(config.display));
 
+    timings_[stepCount_++].name = "wait";
     timings_[stepCount_++].name = "capture";
     for (std::size_t i = 0; i < pipeline_.size(); ++i)
         timings_[stepCount_++].name = pipeline_.stage(i).name();
@@ -96,9 +98,9 @@ int FrameLoop::run(std::uint64_t maxFrames) noexcept
             break;
     }
     writeSummary();
-    const char* why = stop_.load()      ? "stop requested"
-                      : sourceEnded_    ? "end of source"
-                                        : "frame limit reached";
+    const char* why = stop_.load()   ? "stop requested"
+                      : sourceEnded_ ? "end of source"
+                                     : "frame limit reached";
     MIRROR_LOG_INFO("stopped (%s) after %llu frames, %.1f s", why,
                     static_cast<unsigned long long>(framesShown_), uptimeSeconds());
     return kExitOk;
@@ -128,8 +130,9 @@ bool FrameLoop::step() noexcept
         updateRate(nowNs());
         return true;
     }
-    timing(0).total.record(t1 - t0);
-    timing(0).interval.record(t1 - t0);
+    const std::int64_t waited = std::clamp<std::int64_t>(source_->lastWaitNs(), 0, t1 - t0);
+    record(kWaitStep, waited);
+    record(kCaptureStep, t1 - t0 - waited);
 
     // Vision stages, timed one by one.
     vision::Pipeline::begin(state_, frame_);
@@ -137,15 +140,14 @@ bool FrameLoop::step() noexcept
     for (std::size_t i = 0; i < pipeline_.size() && state_.valid; ++i) {
         pipeline_.stage(i).process(state_);
         const std::int64_t after = nowNs();
-        timing(1 + i).total.record(after - t);
-        timing(1 + i).interval.record(after - t);
+        record(kFirstVisionStep + i, after - t);
         t = after;
     }
     if (!state_.valid) {
         ++badFrames_;
         if (!frameBad_)
-            MIRROR_LOG_WARN("frame %llu skipped: %s", static_cast<unsigned long long>(frame_.sequence),
-                            state_.problem);
+            MIRROR_LOG_WARN("frame %llu skipped: %s",
+                            static_cast<unsigned long long>(frame_.sequence), state_.problem);
         frameBad_ = true;
         updateRate(nowNs());
         return true;
@@ -166,12 +168,10 @@ bool FrameLoop::step() noexcept
     if (!renderer_->draw(frame_.image, display_->width(), display_->height(), hud_))
         MIRROR_LOG_WARN("render: %s", renderer_->lastError());
     const std::int64_t t2 = nowNs();
-    timing(renderStep_).total.record(t2 - t);
-    timing(renderStep_).interval.record(t2 - t);
+    record(renderStep_, t2 - t);
     const bool presented = display_->present();
     const std::int64_t t3 = nowNs();
-    timing(presentStep_).total.record(t3 - t2);
-    timing(presentStep_).interval.record(t3 - t2);
+    record(presentStep_, t3 - t2);
     if (!presented) {
         if (!displayDown_)
             MIRROR_LOG_WARN("display: %s", display_->lastError());
@@ -246,9 +246,10 @@ void FrameLoop::formatHud() noexcept
         hud_[0] = '\0';
         return;
     }
+    // Means over the current summary interval: what the frames on screen now cost.
     double visionMs = 0.0;
-    for (std::size_t i = 1; i < renderStep_; ++i)
-        visionMs += timings_[i].total.count() ? timings_[i].interval.meanMs() : 0.0;
+    for (std::size_t i = kFirstVisionStep; i < renderStep_; ++i)
+        visionMs += timings_[i].interval.meanMs();
     std::snprintf(hud_, sizeof hud_, "%.1f fps  frame %llu\nvision %.2f ms  render %.2f ms", fps_,
                   static_cast<unsigned long long>(framesShown_), visionMs,
                   timings_[renderStep_].interval.meanMs());
@@ -260,8 +261,7 @@ void FrameLoop::formatStatus(Reply& reply) const noexcept
                  static_cast<unsigned long long>(framesShown_), fps_,
                  static_cast<unsigned long long>(badFrames_));
     reply.printf("source: %s%s\n", source_->description(), sourceLost_ ? " [LOST]" : "");
-    reply.printf("display: %s%s\n", display_->description(),
-                 displayDown_ ? " [UNAVAILABLE]" : "");
+    reply.printf("display: %s%s\n", display_->description(), displayDown_ ? " [UNAVAILABLE]" : "");
     reply.printf("%-14s %8s %8s %8s\n", "stage", "p50 ms", "p99 ms", "mean ms");
     for (std::size_t i = 0; i < stepCount_; ++i) {
         const LatencyHistogram& h = timings_[i].total;

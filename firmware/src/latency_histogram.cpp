@@ -35,7 +35,10 @@ void LatencyHistogram::record(std::int64_t ns) noexcept
     maxNs_ = std::max(maxNs_, ns);
 }
 
-void LatencyHistogram::reset() noexcept { *this = LatencyHistogram{}; }
+void LatencyHistogram::reset() noexcept
+{
+    *this = LatencyHistogram{};
+}
 
 double LatencyHistogram::meanMs() const noexcept
 {

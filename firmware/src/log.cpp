@@ -27,20 +27,36 @@ const double gStart = monotonicSeconds();
 char levelLetter(LogLevel l) noexcept
 {
     switch (l) {
-    case LogLevel::Error: return 'E';
-    case LogLevel::Warn: return 'W';
-    case LogLevel::Info: return 'I';
-    case LogLevel::Debug: return 'D';
+        case LogLevel::Error:
+            return 'E';
+        case LogLevel::Warn:
+            return 'W';
+        case LogLevel::Info:
+            return 'I';
+        case LogLevel::Debug:
+            return 'D';
     }
     return '?';
 }
 
 }  // namespace
 
-void setLogLevel(LogLevel level) noexcept { gLevel = level; }
-LogLevel logLevel() noexcept { return gLevel; }
-void setLogFd(int fd) noexcept { gFd = fd; }
-double uptimeSeconds() noexcept { return monotonicSeconds() - gStart; }
+void setLogLevel(LogLevel level) noexcept
+{
+    gLevel = level;
+}
+LogLevel logLevel() noexcept
+{
+    return gLevel;
+}
+void setLogFd(int fd) noexcept
+{
+    gFd = fd;
+}
+double uptimeSeconds() noexcept
+{
+    return monotonicSeconds() - gStart;
+}
 
 void logf(LogLevel level, const char* format, ...) noexcept
 {

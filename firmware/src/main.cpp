@@ -10,11 +10,10 @@
 #include "firmware/startup_error.hpp"
 #include "platform/stdin_console.hpp"
 
-#include <CLI/CLI.hpp>
-
 #include <fcntl.h>
 #include <unistd.h>
 
+#include <CLI/CLI.hpp>
 #include <csignal>
 #include <cstdint>
 #include <cstdio>
@@ -97,9 +96,10 @@ Exit codes:
 int main(int argc, char** argv)
 {
     ensureStandardFds();
-    CLI::App app{"mirror: smart mirror appliance firmware (shows you mirrored, tracks faces and a "
-                 "coloured card, draws overlays)",
-                 "mirror"};
+    CLI::App app{
+        "mirror: smart mirror appliance firmware (shows you mirrored, tracks faces and a "
+        "coloured card, draws overlays)",
+        "mirror"};
     app.footer(kFooter);
     app.set_version_flag("--version", "mirror " MIRROR_VERSION);
 

@@ -441,6 +441,11 @@ std::size_t FileSource::imageCount() const noexcept
     return impl_->images.size();
 }
 
+std::int64_t FileSource::lastWaitNs() const noexcept
+{
+    return impl_->pacer.lastSleepNs();
+}
+
 SourceStatus FileSource::next(vision::Frame& frame) noexcept
 {
     Impl& m = *impl_;

@@ -72,13 +72,16 @@ std::int64_t PaceSchedule::next(std::int64_t nowNs) noexcept
 std::int64_t FramePacer::wait() noexcept
 {
     const std::int64_t now = clock_->nowNs();
+    lastSleepNs_ = 0;
     if (!schedule_.paced())
         return now;
     const std::int64_t deadline = schedule_.next(now);
     if (deadline <= now)
         return now;
     clock_->sleepUntilNs(deadline);
-    return clock_->nowNs();
+    const std::int64_t woke = clock_->nowNs();
+    lastSleepNs_ = woke - now;
+    return woke;
 }
 
 }  // namespace platform

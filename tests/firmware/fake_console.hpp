@@ -1,6 +1,6 @@
 #pragma once
-// A Console for tests: scripted input, output captured into a fixed buffer (no allocation, so it can
-// run inside the allocation-counting scope).
+// A Console for tests: scripted input, output captured into a fixed buffer (no allocation, so it
+// can run inside the allocation-counting scope).
 
 #include "platform/console.hpp"
 
@@ -33,7 +33,11 @@ public:
         pendingOffset_ = 0;
     }
     std::string_view output() const noexcept { return {output_, outputLength_}; }
-    void clearOutput() noexcept { outputLength_ = 0; output_[0] = '\0'; }
+    void clearOutput() noexcept
+    {
+        outputLength_ = 0;
+        output_[0] = '\0';
+    }
 
 private:
     const char* pending_ = "";

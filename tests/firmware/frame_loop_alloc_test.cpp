@@ -7,9 +7,8 @@
 #include "firmware/log.hpp"
 #include "test_paths.hpp"
 
-#include <gtest/gtest.h>
-
 #include <fcntl.h>
+#include <gtest/gtest.h>
 #include <unistd.h>
 
 #include <cstdio>
@@ -61,10 +60,11 @@ TEST(FrameLoopAllocations, SteadyStateLoopMakesNoHeapAllocations)
     EXPECT_EQ(loop.framesShown(), 330u);
     EXPECT_NE(console.output().find("stage"), std::string_view::npos) << console.output();
     EXPECT_NE(console.output().find("snapshot: "), std::string_view::npos) << console.output();
-    std::printf("allocations over 300 frames: operator new %ld, our malloc %ld, "
-                "GL driver and other shared libraries %ld (%.1f per frame)\n",
-                counts.cxxNew, counts.ownMalloc, counts.foreignMalloc,
-                static_cast<double>(counts.foreignMalloc) / 300.0);
+    std::printf(
+        "allocations over 300 frames: operator new %ld, our malloc %ld, "
+        "GL driver and other shared libraries %ld (%.1f per frame)\n",
+        counts.cxxNew, counts.ownMalloc, counts.foreignMalloc,
+        static_cast<double>(counts.foreignMalloc) / 300.0);
     EXPECT_EQ(counts.cxxNew, 0);
     EXPECT_EQ(counts.ownMalloc, 0);
 }

@@ -4,15 +4,14 @@
 #include "test_paths.hpp"
 
 #include <gtest/gtest.h>
-#include <opencv2/core.hpp>
-#include <opencv2/imgcodecs.hpp>
-
 #include <sys/wait.h>
 
 #include <algorithm>
 #include <array>
 #include <cstdio>
 #include <filesystem>
+#include <opencv2/core.hpp>
+#include <opencv2/imgcodecs.hpp>
 #include <random>
 #include <string>
 
@@ -52,10 +51,10 @@ std::vector<cv::Mat> writeFrames(const std::string& dir, int count, int width, i
         cv::Mat img(height, width, CV_8UC3);
         for (int y = 0; y < height; ++y)
             for (int x = 0; x < width; ++x)
-                img.at<cv::Vec3b>(y, x) = cv::Vec3b(
-                    static_cast<uchar>(x * 180 / width + noise(rng)),
-                    static_cast<uchar>(y * 180 / height + noise(rng)),
-                    static_cast<uchar>((i * 40 + noise(rng)) % 256));
+                img.at<cv::Vec3b>(y, x) =
+                    cv::Vec3b(static_cast<uchar>(x * 180 / width + noise(rng)),
+                              static_cast<uchar>(y * 180 / height + noise(rng)),
+                              static_cast<uchar>((i * 40 + noise(rng)) % 256));
         char name[64];
         std::snprintf(name, sizeof name, "/frame-%03d.png", i);
         cv::imwrite(dir + name, img);

@@ -119,6 +119,20 @@ TEST(FramePacer, DoesNotSleepWhenLateOrUnpaced)
     EXPECT_TRUE(clock.sleeps.empty());
 }
 
+TEST(FramePacer, ReportsHowLongTheLastWaitSlept)
+{
+    FakeClock clock;
+    FramePacer pacer(10.0, clock);  // 100 ms period
+    pacer.wait();                   // anchors: due at once
+    EXPECT_EQ(pacer.lastSleepNs(), 0);
+    clock.now += 30'000'000;  // 30 ms of work, then 70 ms of idle until the next frame
+    pacer.wait();
+    EXPECT_EQ(pacer.lastSleepNs(), 70'000'000);
+    clock.now += 150'000'000;  // late: no sleep
+    pacer.wait();
+    EXPECT_EQ(pacer.lastSleepNs(), 0);
+}
+
 TEST(FramePacer, RealClockWaitIsMonotonic)
 {
     // Only order is asserted, never durations.

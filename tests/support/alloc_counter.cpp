@@ -23,9 +23,18 @@ AllocationScope::AllocationScope()
     tCounts = {};
     tCounting = true;
 }
-AllocationScope::~AllocationScope() { tCounting = false; }
-AllocationCounts AllocationScope::counts() const { return tCounts; }
-bool allocationCountingAvailable() { return MIRROR_ALLOC_HOOKS != 0; }
+AllocationScope::~AllocationScope()
+{
+    tCounting = false;
+}
+AllocationCounts AllocationScope::counts() const
+{
+    return tCounts;
+}
+bool allocationCountingAvailable()
+{
+    return MIRROR_ALLOC_HOOKS != 0;
+}
 
 }  // namespace testing_support
 
@@ -104,15 +113,36 @@ int posix_memalign(void** out, std::size_t alignment, std::size_t size)
     *out = p;
     return 0;
 }
-void free(void* p) { __libc_free(p); }
+void free(void* p)
+{
+    __libc_free(p);
+}
 }
 
-void* operator new(std::size_t n) { return cxxAllocate(n, 0, false); }
-void* operator new[](std::size_t n) { return cxxAllocate(n, 0, false); }
-void* operator new(std::size_t n, const std::nothrow_t&) noexcept { return cxxAllocate(n, 0, true); }
-void* operator new[](std::size_t n, const std::nothrow_t&) noexcept { return cxxAllocate(n, 0, true); }
-void* operator new(std::size_t n, std::align_val_t a) { return cxxAllocate(n, std::size_t(a), false); }
-void* operator new[](std::size_t n, std::align_val_t a) { return cxxAllocate(n, std::size_t(a), false); }
+void* operator new(std::size_t n)
+{
+    return cxxAllocate(n, 0, false);
+}
+void* operator new[](std::size_t n)
+{
+    return cxxAllocate(n, 0, false);
+}
+void* operator new(std::size_t n, const std::nothrow_t&) noexcept
+{
+    return cxxAllocate(n, 0, true);
+}
+void* operator new[](std::size_t n, const std::nothrow_t&) noexcept
+{
+    return cxxAllocate(n, 0, true);
+}
+void* operator new(std::size_t n, std::align_val_t a)
+{
+    return cxxAllocate(n, std::size_t(a), false);
+}
+void* operator new[](std::size_t n, std::align_val_t a)
+{
+    return cxxAllocate(n, std::size_t(a), false);
+}
 void* operator new(std::size_t n, std::align_val_t a, const std::nothrow_t&) noexcept
 {
     return cxxAllocate(n, std::size_t(a), true);
@@ -121,13 +151,37 @@ void* operator new[](std::size_t n, std::align_val_t a, const std::nothrow_t&) n
 {
     return cxxAllocate(n, std::size_t(a), true);
 }
-void operator delete(void* p) noexcept { __libc_free(p); }
-void operator delete[](void* p) noexcept { __libc_free(p); }
-void operator delete(void* p, std::size_t) noexcept { __libc_free(p); }
-void operator delete[](void* p, std::size_t) noexcept { __libc_free(p); }
-void operator delete(void* p, std::align_val_t) noexcept { __libc_free(p); }
-void operator delete[](void* p, std::align_val_t) noexcept { __libc_free(p); }
-void operator delete(void* p, std::size_t, std::align_val_t) noexcept { __libc_free(p); }
-void operator delete[](void* p, std::size_t, std::align_val_t) noexcept { __libc_free(p); }
+void operator delete(void* p) noexcept
+{
+    __libc_free(p);
+}
+void operator delete[](void* p) noexcept
+{
+    __libc_free(p);
+}
+void operator delete(void* p, std::size_t) noexcept
+{
+    __libc_free(p);
+}
+void operator delete[](void* p, std::size_t) noexcept
+{
+    __libc_free(p);
+}
+void operator delete(void* p, std::align_val_t) noexcept
+{
+    __libc_free(p);
+}
+void operator delete[](void* p, std::align_val_t) noexcept
+{
+    __libc_free(p);
+}
+void operator delete(void* p, std::size_t, std::align_val_t) noexcept
+{
+    __libc_free(p);
+}
+void operator delete[](void* p, std::size_t, std::align_val_t) noexcept
+{
+    __libc_free(p);
+}
 
 #endif  // MIRROR_ALLOC_HOOKS

@@ -11,9 +11,9 @@
 namespace testing_support {
 
 struct AllocationCounts {
-    long cxxNew = 0;        ///< operator new / new[] calls, from anywhere
-    long ownMalloc = 0;     ///< C allocations whose caller is in the executable (our code)
-    long foreignMalloc = 0; ///< C allocations from shared libraries (GL driver, libc internals)
+    long cxxNew = 0;         ///< operator new / new[] calls, from anywhere
+    long ownMalloc = 0;      ///< C allocations whose caller is in the executable (our code)
+    long foreignMalloc = 0;  ///< C allocations from shared libraries (GL driver, libc internals)
 };
 
 class AllocationScope {

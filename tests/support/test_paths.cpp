@@ -4,8 +4,14 @@
 
 namespace testing_support {
 
-std::string sourceDir() { return MIRROR_SOURCE_DIR; }
-std::string binaryDir() { return MIRROR_BINARY_DIR; }
+std::string sourceDir()
+{
+    return MIRROR_SOURCE_DIR;
+}
+std::string binaryDir()
+{
+    return MIRROR_BINARY_DIR;
+}
 
 std::string sharedData(const std::string& relative)
 {

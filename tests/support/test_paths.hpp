@@ -1,5 +1,6 @@
 #pragma once
-// Paths tests read from: the source tree, the build tree, and the shared real data beside the project.
+// Paths tests read from: the source tree, the build tree, and the shared real data beside the
+// project.
 
 #include <string>
 

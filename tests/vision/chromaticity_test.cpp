@@ -1,5 +1,6 @@
 // Chromaticity (ch. 3, 4.3): the table path must equal round(255 c / (R+G+B)) exactly.
 #include "vision/chromaticity.hpp"
+
 #include "vision/chromaticity_stage.hpp"
 
 #include <gtest/gtest.h>

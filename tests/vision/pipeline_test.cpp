@@ -1,5 +1,6 @@
-#include "vision/frame_check_stage.hpp"
 #include "vision/pipeline.hpp"
+
+#include "vision/frame_check_stage.hpp"
 
 #include <gtest/gtest.h>
 

@@ -28,11 +28,29 @@ struct Layout {
 bool layoutOf(PixelFormat f, Layout& out) noexcept
 {
     switch (f) {
-    case PixelFormat::RGB24: out = {0, 1, 2, 3}; return true;
-    case PixelFormat::BGR24: out = {2, 1, 0, 3}; return true;
-    case PixelFormat::XRGB8888: out = {2, 1, 0, 4}; return true;
-    default: return false;
+        case PixelFormat::RGB24:
+            out = {0, 1, 2, 3};
+            return true;
+        case PixelFormat::BGR24:
+            out = {2, 1, 0, 3};
+            return true;
+        case PixelFormat::XRGB8888:
+            out = {2, 1, 0, 4};
+            return true;
+        default:
+            return false;
     }
+}
+
+/// One pixel: select the table row of its sum once, then one look-up per channel (4.3).
+template <int R, int G, int B>
+inline void convertPixel(const ChromaticityTable& table, const std::uint8_t* q, std::uint8_t* r,
+                         std::uint8_t* g, std::uint8_t* b) noexcept
+{
+    const std::uint8_t* t = table.row(q[R] + q[G] + q[B]);
+    *r = t[q[R]];
+    *g = t[q[G]];
+    *b = t[q[B]];
 }
 
 template <int R, int G, int B, int Step>
@@ -48,26 +66,13 @@ void convertRows(const ChromaticityTable& table, const ConstImageView& in,
         int x = 0;
         // 4.3: unrolled by four, one table row pointer per pixel, no divides or branches.
         for (; x + 4 <= w; x += 4, p += 4 * Step) {
-#define MIRROR_CHROMA_PIXEL(i)                                                             \
-    {                                                                                      \
-        const std::uint8_t* q = p + (i) * Step;                                            \
-        const std::uint8_t* t = table.row(q[R] + q[G] + q[B]);                             \
-        pr[x + (i)] = t[q[R]];                                                             \
-        pg[x + (i)] = t[q[G]];                                                             \
-        pb[x + (i)] = t[q[B]];                                                             \
-    }
-            MIRROR_CHROMA_PIXEL(0)
-            MIRROR_CHROMA_PIXEL(1)
-            MIRROR_CHROMA_PIXEL(2)
-            MIRROR_CHROMA_PIXEL(3)
-#undef MIRROR_CHROMA_PIXEL
+            convertPixel<R, G, B>(table, p, pr + x, pg + x, pb + x);
+            convertPixel<R, G, B>(table, p + Step, pr + x + 1, pg + x + 1, pb + x + 1);
+            convertPixel<R, G, B>(table, p + 2 * Step, pr + x + 2, pg + x + 2, pb + x + 2);
+            convertPixel<R, G, B>(table, p + 3 * Step, pr + x + 3, pg + x + 3, pb + x + 3);
         }
-        for (; x < w; ++x, p += Step) {
-            const std::uint8_t* t = table.row(p[R] + p[G] + p[B]);
-            pr[x] = t[p[R]];
-            pg[x] = t[p[G]];
-            pb[x] = t[p[B]];
-        }
+        for (; x < w; ++x, p += Step)
+            convertPixel<R, G, B>(table, p, pr + x, pg + x, pb + x);
     }
 }
 

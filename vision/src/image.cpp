@@ -7,12 +7,18 @@ namespace vision {
 const char* pixelFormatName(PixelFormat f) noexcept
 {
     switch (f) {
-    case PixelFormat::Gray8: return "GRAY8";
-    case PixelFormat::RGB24: return "RGB24";
-    case PixelFormat::BGR24: return "BGR24";
-    case PixelFormat::XRGB8888: return "XRGB8888";
-    case PixelFormat::YUYV: return "YUYV";
-    case PixelFormat::NV12: return "NV12";
+        case PixelFormat::Gray8:
+            return "GRAY8";
+        case PixelFormat::RGB24:
+            return "RGB24";
+        case PixelFormat::BGR24:
+            return "BGR24";
+        case PixelFormat::XRGB8888:
+            return "XRGB8888";
+        case PixelFormat::YUYV:
+            return "YUYV";
+        case PixelFormat::NV12:
+            return "NV12";
     }
     return "?";
 }

@@ -26,9 +26,9 @@ struct SourceConfig {
     std::string spec = "auto";  ///< auto | demo | synthetic | file:PATH (later libcamera, v4l2:DEV)
     int width = 640;            ///< capture size for cameras and the synthetic scene
     int height = 480;
-    double fps = 30.0;          ///< synthetic scene rate; camera frame rate request
-    bool loop = true;           ///< replay files from the start when they end
-    Rate rate;                  ///< pacing of file replay: native, max or a fixed fps
+    double fps = 30.0;  ///< synthetic scene rate; camera frame rate request
+    bool loop = true;   ///< replay files from the start when they end
+    Rate rate;          ///< pacing of file replay: native, max or a fixed fps
     enum class Card { Auto, On, Off } card = Card::Auto;  ///< composite the synthetic card
 };
 
@@ -39,7 +39,7 @@ struct DisplayConfig {
     enum class Fit { Cover, Contain } fit = Fit::Cover;
     bool mirror = true;
     bool hud = true;
-    int snapshotEvery = 30;     ///< frames between automatic snapshots (headless); 0 = on command only
+    int snapshotEvery = 30;  ///< frames between automatic snapshots (headless); 0 = on command only
 };
 
 struct LogConfig {
@@ -62,10 +62,12 @@ struct Config {
     LogConfig log;
     ConsoleConfig console;
     VisionConfig vision;
-    std::string origin;  ///< where it came from, e.g. "/etc/mirror/mirror.toml" or "built-in defaults"
+    std::string
+        origin;  ///< where it came from, e.g. "/etc/mirror/mirror.toml" or "built-in defaults"
 };
 
-/// One problem found in a config file, printed as `FILE:LINE:COL: key: what is wrong (allowed: ...)`.
+/// One problem found in a config file, printed as `FILE:LINE:COL: key: what is wrong (allowed:
+/// ...)`.
 struct ConfigProblem {
     std::string file;
     int line = 0;
@@ -86,9 +88,9 @@ private:
 };
 
 struct ConfigRequest {
-    std::string path;              ///< config file; empty = kDefaultConfigPath if it exists
-    bool pathExplicit = false;     ///< given with --config: a missing file is then an error
-    std::vector<std::string> sets; ///< --set KEY=VALUE overrides, VALUE in TOML syntax
+    std::string path;               ///< config file; empty = kDefaultConfigPath if it exists
+    bool pathExplicit = false;      ///< given with --config: a missing file is then an error
+    std::vector<std::string> sets;  ///< --set KEY=VALUE overrides, VALUE in TOML syntax
 };
 
 /// Defaults, then the file, then the overrides; validates everything. Throws ConfigError.

@@ -11,7 +11,8 @@
 namespace firmware {
 
 /// Debian's opencv-doc sample video, the real scene of the demo (a face; 720x528).
-inline constexpr const char* kDemoVideoPath = "/usr/share/doc/opencv-doc/examples/data/Megamind.avi";
+inline constexpr const char* kDemoVideoPath =
+    "/usr/share/doc/opencv-doc/examples/data/Megamind.avi";
 
 /// Opens the source. Throws StartupError(kExitSource) with one line on failure.
 std::unique_ptr<platform::FrameSource> makeSource(const SourceConfig& config);

@@ -2,10 +2,10 @@
 // FrameLoop: the appliance's main loop. Per frame: poll the console, take a frame from the source,
 // run the vision stages, draw with the renderer, present on the display; time every step.
 //
-// Ownership: the loop owns the source, the display, the pipeline (and through it every stage buffer)
-// and the renderer; all of them are built before the first frame. step() never throws and never
-// allocates: device errors become states (source lost, display unavailable) that are logged once when
-// they begin and once when they end.
+// Ownership: the loop owns the source, the display, the pipeline (and through it every stage
+// buffer) and the renderer; all of them are built before the first frame. step() never throws and
+// never allocates: device errors become states (source lost, display unavailable) that are logged
+// once when they begin and once when they end.
 
 #include "firmware/command_shell.hpp"
 #include "firmware/config.hpp"
@@ -33,7 +33,7 @@ struct StepTiming {
 
 class FrameLoop {
 public:
-    static constexpr std::size_t kMaxSteps = vision::Pipeline::kMaxStages + 3;
+    static constexpr std::size_t kMaxSteps = vision::Pipeline::kMaxStages + 4;
 
     /// Builds the pipeline and renderer for the source's size and format. Throws on failure.
     FrameLoop(const Config& config, std::unique_ptr<platform::FrameSource> source,
@@ -45,8 +45,8 @@ public:
     /// The console the shell reads commands from and answers on (not owned; may be null).
     void attachConsole(platform::Console* console) noexcept { console_ = console; }
 
-    /// Runs until `maxFrames` frames were shown (0 = no limit), `quit`, requestStop(), or the end of
-    /// a finite source. Returns an exit code (kExitOk when it stopped as asked).
+    /// Runs until `maxFrames` frames were shown (0 = no limit), `quit`, requestStop(), or the end
+    /// of a finite source. Returns an exit code (kExitOk when it stopped as asked).
     int run(std::uint64_t maxFrames) noexcept;
     /// One iteration. False when the loop should stop.
     bool step() noexcept;
@@ -71,7 +71,11 @@ private:
     void updateRate(std::int64_t nowNs) noexcept;
     void writeSummary() noexcept;
     void formatHud() noexcept;
-    StepTiming& timing(std::size_t i) noexcept { return timings_[i]; }
+    void record(std::size_t step, std::int64_t ns) noexcept
+    {
+        timings_[step].total.record(ns);
+        timings_[step].interval.record(ns);
+    }
 
     Config config_;
     std::string configToml_;  // effective config, rendered once at start-up for `config`
@@ -84,7 +88,11 @@ private:
     CommandShell shell_;
     platform::Console* console_ = nullptr;
 
-    // Steps: [0] capture, [1..n] vision stages, then render, present.
+    // Steps: wait (idle until the frame is due), capture (decode, copy), the vision stages from
+    // kFirstVisionStep on, then render and present.
+    static constexpr std::size_t kWaitStep = 0;
+    static constexpr std::size_t kCaptureStep = 1;
+    static constexpr std::size_t kFirstVisionStep = 2;
     std::array<StepTiming, kMaxSteps> timings_{};
     std::size_t stepCount_ = 0;
     std::size_t renderStep_ = 0;

@@ -1,8 +1,8 @@
 #pragma once
-// Logging for the firmware: one line per event, "[   12.345] W source: camera lost: ...", to stderr,
-// filtered by level. Formatting uses a fixed buffer and one write(2): safe in the frame loop (no
-// allocation, no locks beyond the kernel's). Platform and render code do not log; they return
-// states and the firmware logs what changed.
+// Logging for the firmware: one line per event, "[   12.345] W source: camera lost: ...", to
+// stderr, filtered by level. Formatting uses a fixed buffer and one write(2): safe in the frame
+// loop (no allocation, no locks beyond the kernel's). Platform and render code do not log; they
+// return states and the firmware logs what changed.
 
 #include "firmware/config.hpp"
 

@@ -65,6 +65,7 @@ public:
     vision::Size size() const noexcept override { return size_; }
     vision::PixelFormat format() const noexcept override { return format_; }
     SourceStatus next(vision::Frame& frame) noexcept override;
+    std::int64_t lastWaitNs() const noexcept override { return inner_->lastWaitNs(); }
     const char* lastError() const noexcept override;
 
     /// Corners of the card in the last delivered frame (of sequence 0 before the first), clockwise

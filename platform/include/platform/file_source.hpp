@@ -63,6 +63,7 @@ public:
     vision::Size size() const noexcept override;
     vision::PixelFormat format() const noexcept override { return vision::PixelFormat::BGR24; }
     SourceStatus next(vision::Frame& frame) noexcept override;
+    std::int64_t lastWaitNs() const noexcept override;
     /// The last skipped frame ("file:PATH: skipped undecodable frame N") or the reason for Lost.
     const char* lastError() const noexcept override;
 

@@ -73,10 +73,13 @@ public:
     bool paced() const noexcept { return schedule_.paced(); }
     double fps() const noexcept { return schedule_.fps(); }
     std::uint64_t reanchors() const noexcept { return schedule_.reanchors(); }
+    /// How long the last wait() slept (0 when the frame was already due).
+    std::int64_t lastSleepNs() const noexcept { return lastSleepNs_; }
 
 private:
     PaceSchedule schedule_;
     PacerClock* clock_;
+    std::int64_t lastSleepNs_ = 0;
 };
 
 }  // namespace platform

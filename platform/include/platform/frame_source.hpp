@@ -3,6 +3,8 @@
 
 #include "vision/image.hpp"
 
+#include <cstdint>
+
 namespace platform {
 
 enum class SourceStatus {
@@ -28,6 +30,9 @@ public:
     /// Waits until the next frame is due (the source's pacing) and delivers it. The view in
     /// `frame` stays valid until the next call.
     virtual SourceStatus next(vision::Frame& frame) noexcept = 0;
+    /// How long the last next() spent idle, waiting for the frame to be due (pacing) or to arrive
+    /// (a camera), as opposed to working on it. The loop reports the two apart.
+    virtual std::int64_t lastWaitNs() const noexcept { return 0; }
     /// Reason for the last Lost status; empty when none.
     virtual const char* lastError() const noexcept { return ""; }
 };

@@ -31,6 +31,7 @@ public:
     vision::Size size() const noexcept override { return {width_, height_}; }
     vision::PixelFormat format() const noexcept override { return vision::PixelFormat::RGB24; }
     SourceStatus next(vision::Frame& frame) noexcept override;
+    std::int64_t lastWaitNs() const noexcept override { return pacer_.lastSleepNs(); }
 
     /// Renders frame `index` into `out` (same size, RGB24); false when `out` does not fit. Used by
     /// next() and by tests that need the picture of a given index.

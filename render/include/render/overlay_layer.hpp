@@ -12,7 +12,7 @@ namespace render {
 /// place themselves in camera coordinates and come out mirrored with the video.
 struct LayerContext {
     float imageToNdc[4] = {1.f, 0.f, 1.f, 0.f};
-    vision::Size image;   ///< camera image size
+    vision::Size image;  ///< camera image size
     int viewportWidth = 0;
     int viewportHeight = 0;
     bool mirrored = true;
@@ -22,8 +22,9 @@ class OverlayLayer {
 public:
     virtual ~OverlayLayer() = default;
     virtual const char* name() const noexcept = 0;
-    /// Draws with GL state left as the renderer set it: blending on with standard (non-premultiplied)
-    /// alpha (SRC_ALPHA, ONE_MINUS_SRC_ALPHA), depth and stencil tests off. Never throws.
+    /// Draws with GL state left as the renderer set it: blending on with standard
+    /// (non-premultiplied) alpha (SRC_ALPHA, ONE_MINUS_SRC_ALPHA), depth and stencil tests off.
+    /// Never throws.
     virtual void draw(const LayerContext& context) noexcept = 0;
 };
 

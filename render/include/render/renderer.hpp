@@ -21,7 +21,7 @@ enum class Fit {
 struct RendererOptions {
     bool mirror = true;  ///< draw left-right flipped, as a mirror shows a person
     Fit fit = Fit::Cover;
-    bool hud = true;     ///< draw the diagnostics text (fps etc.) in the top-left corner
+    bool hud = true;  ///< draw the diagnostics text (fps etc.) in the top-left corner
 };
 
 class Renderer {
@@ -30,7 +30,8 @@ public:
 
     /// Creates the GL objects for frames of this size and format (RGB24, BGR24, XRGB8888, Gray8).
     /// Needs a current GLES2 context; throws std::runtime_error with one line on failure.
-    Renderer(vision::Size videoSize, vision::PixelFormat videoFormat, const RendererOptions& options);
+    Renderer(vision::Size videoSize, vision::PixelFormat videoFormat,
+             const RendererOptions& options);
     ~Renderer();
     Renderer(const Renderer&) = delete;
     Renderer& operator=(const Renderer&) = delete;

@@ -25,12 +25,18 @@ enum class PixelFormat : std::uint8_t {
 constexpr int bytesPerPixel(PixelFormat f) noexcept
 {
     switch (f) {
-    case PixelFormat::Gray8: return 1;
-    case PixelFormat::RGB24: return 3;
-    case PixelFormat::BGR24: return 3;
-    case PixelFormat::XRGB8888: return 4;
-    case PixelFormat::YUYV: return 2;
-    case PixelFormat::NV12: return 1;
+        case PixelFormat::Gray8:
+            return 1;
+        case PixelFormat::RGB24:
+            return 3;
+        case PixelFormat::BGR24:
+            return 3;
+        case PixelFormat::XRGB8888:
+            return 4;
+        case PixelFormat::YUYV:
+            return 2;
+        case PixelFormat::NV12:
+            return 1;
     }
     return 0;
 }
@@ -61,7 +67,10 @@ struct BasicImageView {
 
     constexpr bool empty() const noexcept { return data == nullptr || width <= 0 || height <= 0; }
     constexpr Size size() const noexcept { return {width, height}; }
-    constexpr T* row(int y) const noexcept { return data + static_cast<std::ptrdiff_t>(y) * stride; }
+    constexpr T* row(int y) const noexcept
+    {
+        return data + static_cast<std::ptrdiff_t>(y) * stride;
+    }
 
     /// A writable view converts to a read-only one.
     constexpr operator BasicImageView<const std::uint8_t>() const noexcept
@@ -85,7 +94,10 @@ public:
     ImageBuffer& operator=(const ImageBuffer&) = delete;
 
     ImageView view() noexcept { return {data_.get(), width_, height_, stride_, format_}; }
-    ConstImageView view() const noexcept { return {data_.get(), width_, height_, stride_, format_}; }
+    ConstImageView view() const noexcept
+    {
+        return {data_.get(), width_, height_, stride_, format_};
+    }
     bool empty() const noexcept { return !data_; }
     std::size_t bytes() const noexcept { return imageBytes(format_, height_, stride_); }
 
@@ -100,8 +112,8 @@ private:
 /// One captured frame as the pipeline sees it. The view is valid until the source's next call.
 struct Frame {
     ConstImageView image;
-    std::uint64_t sequence = 0;      ///< counts frames delivered by the source, from 0
-    std::int64_t timestampNs = 0;    ///< capture time, CLOCK_MONOTONIC (sensor time where known)
+    std::uint64_t sequence = 0;    ///< counts frames delivered by the source, from 0
+    std::int64_t timestampNs = 0;  ///< capture time, CLOCK_MONOTONIC (sensor time where known)
 };
 
 }  // namespace vision

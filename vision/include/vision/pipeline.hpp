@@ -1,6 +1,6 @@
 #pragma once
-// Pipeline: the ordered vision stages, built at start-up. The firmware runs them one by one so it can
-// time each; run() is for callers that do not need timing (tools, tests).
+// Pipeline: the ordered vision stages, built at start-up. The firmware runs them one by one so it
+// can time each; run() is for callers that do not need timing (tools, tests).
 
 #include "vision/stage.hpp"
 
