@@ -1,5 +1,7 @@
 #include "platform/card_scene_source.hpp"
 
+#include "noise_hash.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -18,17 +20,6 @@ constexpr double kMaxYaw = 0.35;
 constexpr double kMaxPitch = 0.30;
 constexpr double kMaxRoll = 0.25;
 constexpr double kMarginPx = 2.0;  // the card's corners keep this far from the frame's border
-
-inline std::uint32_t hash3(std::uint32_t x, std::uint32_t y, std::uint32_t z) noexcept
-{
-    std::uint32_t h = x * 0x9E3779B1u ^ y * 0x85EBCA77u ^ (z + 0x165667B1u) * 0xC2B2AE3Du;
-    h ^= h >> 15;
-    h *= 0x2C1B3C6Du;
-    h ^= h >> 12;
-    h *= 0x297A2D39u;
-    h ^= h >> 15;
-    return h;
-}
 
 struct ChannelLayout {
     int bytesPerPixel;
@@ -254,8 +245,8 @@ bool CardSceneSource::drawCard(std::uint64_t sequence, vision::ImageView image) 
             const double u = std::clamp((hinv[0] * x + hinv[1] * y + hinv[2]) / w, -1.0, 1.0);
             const double v = std::clamp((hinv[3] * x + hinv[4] * y + hinv[5]) / w, -1.0, 1.0);
             const double light = pose.brightness + pose.gradientU * u + pose.gradientV * v;
-            const int noise = static_cast<int>(hash3(static_cast<std::uint32_t>(x),
-                                                     static_cast<std::uint32_t>(y), seq32) %
+            const int noise = static_cast<int>(noiseHash(static_cast<std::uint32_t>(x),
+                                                         static_cast<std::uint32_t>(y), seq32) %
                                                static_cast<std::uint32_t>(noiseSpan)) -
                               noiseSpan / 2;
             const int offsets[3] = {layout.r, layout.g, layout.b};

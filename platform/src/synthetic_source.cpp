@@ -1,5 +1,7 @@
 #include "platform/synthetic_source.hpp"
 
+#include "noise_hash.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -15,18 +17,6 @@ namespace {
 struct Rgb {
     int r, g, b;
 };
-
-/// Cheap integer hash for deterministic per-pixel noise.
-inline std::uint32_t hash2(std::uint32_t x, std::uint32_t y) noexcept
-{
-    std::uint32_t h = x * 0x9E3779B1u ^ (y + 0x7F4A7C15u) * 0x85EBCA77u;
-    h ^= h >> 15;
-    h *= 0x2C1B3C6Du;
-    h ^= h >> 12;
-    h *= 0x297A2D39u;
-    h ^= h >> 15;
-    return h;
-}
 
 inline std::uint8_t clampByte(double v) noexcept
 {
@@ -96,8 +86,8 @@ void fillEllipse(vision::ImageView img, double cx, double cy, double a, double b
                     continue;
             }
             const int light = 256 - static_cast<int>(shade * std::min(q, 1.0) * 256.0);
-            const int tex = static_cast<int>(hash2(static_cast<std::uint32_t>(x - ox),
-                                                   static_cast<std::uint32_t>(y - oy)) %
+            const int tex = static_cast<int>(noiseHash(static_cast<std::uint32_t>(x - ox),
+                                                       static_cast<std::uint32_t>(y - oy)) %
                                              7u) -
                             3;
             const int r = std::clamp(((c.r * light) >> 8) + tex, 0, 255);
@@ -177,7 +167,7 @@ void SyntheticSource::renderBackground() noexcept
             // Fine sensor-like noise, +-4.
             const double n =
                 static_cast<double>(
-                    hash2(static_cast<std::uint32_t>(x), static_cast<std::uint32_t>(y)) % 9u) -
+                    noiseHash(static_cast<std::uint32_t>(x), static_cast<std::uint32_t>(y)) % 9u) -
                 4.0;
             p[0] = clampByte(r + n);
             p[1] = clampByte(g + n);
