@@ -3,6 +3,7 @@
 // each stage; stages share results through FrameState. process() never throws and never allocates:
 // everything a stage needs is allocated in its constructor, sized from the configured resolution.
 
+#include "vision/card_tracker.hpp"
 #include "vision/chromaticity.hpp"
 #include "vision/image.hpp"
 
@@ -17,6 +18,8 @@ struct FrameState {
     const char* problem = "";
     /// Chromaticity planes (ch. 3) when the chromaticity stage ran, empty views otherwise.
     ChromaticityPlanes chroma{};
+    /// The colour card (ch. 4) when the card stage ran, null otherwise.
+    const CardObservation* card = nullptr;
 };
 
 class Stage {

@@ -1,0 +1,95 @@
+#pragma once
+// CardTracker: the colour-card tracker of method ch. 4 (METHOD.md §2), plus what the dissertation
+// lists as future work: detecting a lost track and recovering from the trained colour and the last
+// good shape, sub-pixel corners and temporal smoothing.
+//
+// Per frame (steps of §2): colour test of every pixel against a Gaussian chromaticity model (2),
+// object mask updated only where the frame changed (3), largest 8-connected component -> convex
+// hull -> Low & Ilie minimum bounding quadrilateral (4), refinement along edge normals on the
+// saturation gradient with a RANSAC line fit per edge (5), mask cleared outside the quad (6),
+// model update mu' = a mu_train + (1 - a)(b mu_prev + (1 - b) mu_cur) (7).
+//
+// All buffers are allocated in the constructor for the configured size; process() never allocates
+// and never throws.
+
+#include "vision/chromaticity.hpp"
+#include "vision/geometry.hpp"
+#include "vision/image.hpp"
+
+#include <cstdint>
+#include <memory>
+
+namespace vision {
+
+/// The Gaussian colour model in chromaticity (0..255 scale): per channel r, g, b mean and standard
+/// deviation. Plain data so the firmware can save and reload it.
+struct CardColorModel {
+    float mean[3] = {0.f, 0.f, 0.f};
+    float sigma[3] = {0.f, 0.f, 0.f};
+    bool valid = false;
+};
+
+enum class CardState : std::uint8_t {
+    Untrained,  ///< no colour model yet: nothing to look for
+    Searching,  ///< trained, no card seen yet (or after reset)
+    Tracking,   ///< the card is found and its quad is current
+    Lost,       ///< the track was lost; searching again from the trained colour and the last shape
+};
+const char* cardStateName(CardState state) noexcept;
+
+struct CardTrackerOptions {
+    float threshold = 3.0f;       ///< t of step 2: |x - mu| < t sigma on each channel
+    float minSigma = 2.0f;        ///< floor on sigma, so a flat training patch still admits noise
+    float alpha = 0.25f;          ///< a of step 7: weight of the trained model (anchor, no drift)
+    float beta = 0.75f;           ///< b of step 7: weight of the previous model (steadiness)
+    int changeThreshold = 24;     ///< step 3: |dR|+|dG|+|dB| above this marks a changed pixel
+    float minAreaFraction = 0.003f;  ///< a component smaller than this share of the frame is no card
+    float maxAreaFraction = 0.85f;   ///< more than this matches: the model ran away -> lost
+    int normalsPerEdge = 12;      ///< step 5: sample lines across each edge
+    float saturationGradient = 0.12f;  ///< step 5: edge where dS exceeds this (S in 0..1)
+    float smoothingMinCutoffHz = 1.0f; ///< One-Euro filter on corners: jitter at rest
+    float smoothingBeta = 0.05f;       ///< One-Euro: how fast the cutoff rises with speed (no lag)
+};
+
+struct CardObservation {
+    CardState state = CardState::Untrained;
+    float confidence = 0.f;  ///< 0..1: how sure the tracker is of `quad`
+    bool hasQuad = false;    ///< quad is valid (Tracking; also the last good shape while Lost)
+    Quad quad{};             ///< smoothed corners, sub-pixel, clockwise from the top-left
+    Quad rawQuad{};          ///< corners of this frame before temporal smoothing
+    ConstImageView mask;     ///< object mask, Gray8, 255 = card-coloured object pixel; valid until next process()
+    int area = 0;            ///< pixels of the largest component
+    std::uint32_t framesSinceGood = 0;  ///< frames since the last Tracking frame
+};
+
+class CardTracker {
+public:
+    /// Buffers for frames of `size` (RGB24, BGR24 or XRGB8888 input).
+    CardTracker(Size size, const CardTrackerOptions& options = {});
+    ~CardTracker();
+    CardTracker(const CardTracker&) = delete;
+    CardTracker& operator=(const CardTracker&) = delete;
+
+    /// Step 1: trains the colour model on `region` of this frame (the method trains on a frame where
+    /// the card fills the view; the appliance trains on a central region). Resets the track.
+    /// False (model unchanged) when the region is empty or outside the frame.
+    bool train(const ConstImageView& rgb, const ChromaticityPlanes& chroma, Rect region) noexcept;
+    /// Installs a saved model (trained earlier). Resets the track.
+    void setModel(const CardColorModel& model) noexcept;
+    const CardColorModel& trainedModel() const noexcept;
+    const CardColorModel& currentModel() const noexcept;
+
+    /// Steps 2-7 on one frame. `rgb` is the camera frame, `chroma` its chromaticity planes.
+    const CardObservation& process(const ConstImageView& rgb,
+                                   const ChromaticityPlanes& chroma) noexcept;
+    const CardObservation& observation() const noexcept;
+    /// Forgets the track (keeps the model).
+    void reset() noexcept;
+    const CardTrackerOptions& options() const noexcept;
+
+private:
+    struct State;
+    std::unique_ptr<State> s_;
+};
+
+}  // namespace vision
