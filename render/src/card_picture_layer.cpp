@@ -498,11 +498,20 @@ void CardPictureLayer::draw(const LayerContext& context) noexcept
     glActiveTexture(GL_TEXTURE0);
     glBindTexture(GL_TEXTURE_2D, gl_->picture.id());
 
+    // In a mirror the card's picture must still read the right way round to the person holding
+    // it (text on it is not reversed), so when the video is mirrored the picture's u is flipped:
+    // rows of F * H^-1 with F = [[-1 0 1] [0 1 0] [0 0 1]], i.e. u' = w - u in homogeneous terms.
+    float m[9];
+    for (int i = 0; i < 9; ++i)
+        m[i] = inverseHomography_[i];
+    if (context.mirrored)
+        for (int c = 0; c < 3; ++c)
+            m[c] = m[6 + c] - m[c];
     // GLES2 takes matrices column-major only (transpose must be GL_FALSE).
     float columnMajor[9];
     for (int r = 0; r < 3; ++r)
         for (int c = 0; c < 3; ++c)
-            columnMajor[c * 3 + r] = inverseHomography_[r * 3 + c];
+            columnMajor[c * 3 + r] = m[r * 3 + c];
     glUniform1i(gl_->pictureUniform, 0);
     glUniform1i(gl_->maskUniform, 1);
     glUniformMatrix3fv(gl_->cameraToPictureUniform, 1, GL_FALSE, columnMajor);

@@ -294,6 +294,32 @@ TEST_F(CardPictureLayerTest, MirroredWithTheVideo)
     EXPECT_TRUE(near(gl.pixel(kWidth - 1 - 25, 50), kVideo));
 }
 
+TEST_F(CardPictureLayerTest, PictureReadsTheRightWayRoundOnScreenMirroredOrNot)
+{
+    // Left half of the picture blue, right half red: a viewer must see blue on the left of the
+    // card on screen, whether or not the video is mirrored (text on the picture is not reversed).
+    vision::ImageBuffer picture = solidImage(32, 32, PixelFormat::RGB24, 255, 0, 0);
+    for (int y = 0; y < 32; ++y)
+        for (int x = 0; x < 16; ++x) {
+            std::uint8_t* p = picture.view().row(y) + 3 * x;
+            p[0] = 0;
+            p[2] = 255;
+        }
+    CardPictureLayer layer(picture.view(), {kWidth, kHeight});
+    const CardObservation card = tracking(kSquareQuad, fullMask);  // camera x 30..90
+    for (const bool mirror : {true, false}) {
+        Renderer renderer({kWidth, kHeight}, PixelFormat::RGB24, options(mirror));
+        renderer.addLayer(&layer);
+        frame(renderer, layer, &card);
+        // The card spans camera x 30..90: on screen 30..90, or 59..119 when mirrored.
+        const int left = mirror ? kWidth - 1 - 85 : 35;
+        const int right = mirror ? kWidth - 1 - 35 : 85;
+        EXPECT_TRUE(near(gl.pixel(left, 45), kBlue)) << mirror << " " << text(gl.pixel(left, 45));
+        EXPECT_FALSE(near(gl.pixel(right, 45), kBlue))
+            << mirror << " " << text(gl.pixel(right, 45));
+    }
+}
+
 TEST_F(CardPictureLayerTest, WithoutAPictureTheQuadIsOutlined)
 {
     Renderer renderer({kWidth, kHeight}, PixelFormat::RGB24, options());
