@@ -81,6 +81,21 @@ std::string checkDisplaySpec(std::string_view value)
                      {{"headless:", "directory"}, {"drm:", "card"}});
 }
 
+/// Any path, or empty for "the built-in one".
+std::string checkOptionalPath(std::string_view value)
+{
+    if (value.find('\0') != std::string_view::npos)
+        return "a path cannot contain a NUL character";
+    return {};
+}
+
+std::string checkDirectory(std::string_view value)
+{
+    if (value.empty())
+        return "needs a directory";
+    return checkOptionalPath(value);
+}
+
 // Enum choices, in the order of the C++ enum they map to (values travel as the index).
 constexpr std::array<std::string_view, 3> kCardChoices{"auto", "on", "off"};
 constexpr std::array<std::string_view, 2> kFitChoices{"cover", "contain"};
@@ -234,6 +249,62 @@ const KeySpec kSchema[] = {
      .doc = "Compute normalised-RGB (chromaticity) planes for the colour trackers",
      .set = [](Config& c, const Value& v) { c.vision.chromaticity = asBool(v); },
      .get = [](const Config& c) -> Value { return c.vision.chromaticity; }},
+    {.name = "vision.deinterlace",
+     .kind = Kind::Bool,
+     .doc = "4.2.4: remove interlace tearing before tracking (for interlaced cameras)",
+     .set = [](Config& c, const Value& v) { c.vision.deinterlace = asBool(v); },
+     .get = [](const Config& c) -> Value { return c.vision.deinterlace; }},
+    // [card]
+    {.name = "card.enabled",
+     .kind = Kind::Bool,
+     .doc = "Track a solid-coloured card (ch. 4) and show the picture on it",
+     .set = [](Config& c, const Value& v) { c.card.enabled = asBool(v); },
+     .get = [](const Config& c) -> Value { return c.card.enabled; }},
+    {.name = "card.picture",
+     .kind = Kind::String,
+     .check = checkOptionalPath,
+     .stringForms = R"("" (the built-in picture) or a PNG/JPEG path)",
+     .doc =
+         "Picture shown on the card; an unreadable file is reported and the card's outline shown",
+     .set = [](Config& c, const Value& v) { c.card.picture = asText(v); },
+     .get = [](const Config& c) -> Value { return c.card.picture; }},
+    {.name = "card.train_fraction",
+     .kind = Kind::Float,
+     .min = 0.05,
+     .max = 1,
+     .doc =
+         "Share of the frame's width and height, centred, that `card train` learns the colour from",
+     .set = [](Config& c, const Value& v) { c.card.trainFraction = asDouble(v); },
+     .get = [](const Config& c) -> Value { return c.card.trainFraction; }},
+    {.name = "card.threshold",
+     .kind = Kind::Float,
+     .min = 0.5,
+     .max = 10,
+     .doc = "Colour test: a pixel matches when within this many standard deviations (t of 4.2.1)",
+     .set = [](Config& c, const Value& v) { c.card.threshold = asDouble(v); },
+     .get = [](const Config& c) -> Value { return c.card.threshold; }},
+    {.name = "card.alpha",
+     .kind = Kind::Float,
+     .min = 0,
+     .max = 1,
+     .doc = "Model update: weight of the trained colour (anchors the model, prevents drift)",
+     .set = [](Config& c, const Value& v) { c.card.alpha = asDouble(v); },
+     .get = [](const Config& c) -> Value { return c.card.alpha; }},
+    {.name = "card.beta",
+     .kind = Kind::Float,
+     .min = 0,
+     .max = 1,
+     .doc = "Model update: weight of the previous colour against this frame's (steadiness)",
+     .set = [](Config& c, const Value& v) { c.card.beta = asDouble(v); },
+     .get = [](const Config& c) -> Value { return c.card.beta; }},
+    // [state]
+    {.name = "state.dir",
+     .kind = Kind::String,
+     .check = checkDirectory,
+     .stringForms = R"(a directory path)",
+     .doc = "Where the mirror keeps what it learns across restarts (the trained card colour)",
+     .set = [](Config& c, const Value& v) { c.state.dir = asText(v); },
+     .get = [](const Config& c) -> Value { return c.state.dir; }},
 };
 
 std::string range(const KeySpec& spec)

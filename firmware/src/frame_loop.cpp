@@ -2,7 +2,10 @@
 
 #include "firmware/exit_codes.hpp"
 #include "firmware/log.hpp"
+#include "platform/image_file.hpp"
+#include "render/default_card_picture.hpp"
 #include "vision/chromaticity_stage.hpp"
+#include "vision/deinterlace_stage.hpp"
 #include "vision/frame_check_stage.hpp"
 
 #include <fcntl.h>
@@ -51,15 +54,14 @@ FrameLoop::FrameLoop(const Config& config, std::unique_ptr<platform::FrameSource
 {
     const vision::Size size = source_->size();
     const vision::PixelFormat format = source_->format();
-
-    pipeline_.add(std::make_unique<vision::FrameCheckStage>(size, format));
-    if (config.vision.chromaticity)
-        pipeline_.add(std::make_unique<vision::ChromaticityStage>(size));
+    buildPipeline(size, format);
 
     // The renderer's GL objects belong to the display's context: make it current first.
     if (!display_->beginFrame())
         throw std::runtime_error(std::string("display: ") + display_->lastError());
     renderer_ = std::make_unique<render::Renderer>(size, format, rendererOptions(config.display));
+    if (cardStage_)
+        setUpCard(size);
 
     timings_[stepCount_++].name = "wait";
     timings_[stepCount_++].name = "capture";
@@ -80,13 +82,71 @@ FrameLoop::FrameLoop(const Config& config, std::unique_ptr<platform::FrameSource
     registerCommands();
 }
 
+void FrameLoop::buildPipeline(vision::Size size, vision::PixelFormat format)
+{
+    pipeline_.add(std::make_unique<vision::FrameCheckStage>(size, format));
+    if (config_.vision.deinterlace)
+        pipeline_.add(std::make_unique<vision::DeinterlaceStage>(size, format));
+    // The card's colour test works on chromaticity (ch. 3): the tracker needs the planes.
+    if (config_.vision.chromaticity || config_.card.enabled)
+        pipeline_.add(std::make_unique<vision::ChromaticityStage>(size));
+    if (config_.card.enabled) {
+        vision::CardTrackerOptions options;
+        options.threshold = static_cast<float>(config_.card.threshold);
+        options.alpha = static_cast<float>(config_.card.alpha);
+        options.beta = static_cast<float>(config_.card.beta);
+        auto stage = std::make_unique<vision::CardStage>(size, options);
+        cardStage_ = stage.get();
+        pipeline_.add(std::move(stage));
+    }
+}
+
+void FrameLoop::setUpCard(vision::Size size)
+{
+    // The trained colour survives restarts; a corrupt file is reported and ignored.
+    cardStore_ = std::make_unique<CardModelStore>(config_.state.dir);
+    if (!cardStore_->usable())
+        MIRROR_LOG_WARN("card: %s; a trained colour will not be kept across restarts",
+                        cardStore_->lastError());
+    std::string warning;
+    if (const auto model = cardStore_->load(warning)) {
+        cardStage_->tracker().setModel(*model);
+        MIRROR_LOG_INFO("card: colour loaded from %s", cardStore_->path().c_str());
+    } else if (!warning.empty()) {
+        MIRROR_LOG_WARN("card: %s", warning.c_str());
+    } else {
+        MIRROR_LOG_INFO(
+            "card: not trained yet (console: card train, with the card filling the "
+            "middle of the view)");
+    }
+
+    // The picture: the configured file, else the built-in one; a file that cannot be read is
+    // reported and the card's outline is drawn instead, so tracking still shows.
+    vision::ImageBuffer picture;
+    if (config_.card.picture.empty()) {
+        picture = render::defaultCardPicture({640, 452});
+    } else {
+        try {
+            picture = platform::loadImageFile(config_.card.picture, "card picture");
+        } catch (const std::exception& e) {
+            MIRROR_LOG_ERROR("%s; drawing the card's outline instead", e.what());
+        }
+    }
+    const vision::ConstImageView view =
+        picture.empty() ? vision::ConstImageView{} : vision::ConstImageView(picture.view());
+    cardLayer_ = std::make_unique<render::CardPictureLayer>(view, size);
+    renderer_->addLayer(cardLayer_.get());
+}
+
 FrameLoop::~FrameLoop()
 {
     if (summaryFd_ >= 0)
         ::close(summaryFd_);
-    // The renderer's GL objects must go while the display's context still exists.
-    if (renderer_ && display_->beginFrame())
+    // GL objects must go while the display's context still exists.
+    if (renderer_ && display_->beginFrame()) {
+        cardLayer_.reset();
         renderer_.reset();
+    }
 }
 
 int FrameLoop::run(std::uint64_t maxFrames) noexcept
@@ -155,6 +215,12 @@ bool FrameLoop::step() noexcept
     if (frameBad_)
         MIRROR_LOG_INFO("frames are good again");
     frameBad_ = false;
+    if (cardStage_) {
+        if (cardTrainPending_)
+            trainCard();
+        noteCardState();
+        cardLayer_->update(state_.card);
+    }
 
     // Render and present.
     if (!display_->beginFrame()) {
@@ -192,6 +258,73 @@ bool FrameLoop::step() noexcept
     }
     updateRate(t3);
     return true;
+}
+
+void FrameLoop::trainCard() noexcept
+{
+    // Step 1 of 4.2: learn the colour from the centre of this frame (the card held there).
+    cardTrainPending_ = false;
+    const vision::Size size = source_->size();
+    const double f = config_.card.trainFraction;
+    const int w = std::max(1, static_cast<int>(size.width * f));
+    const int h = std::max(1, static_cast<int>(size.height * f));
+    const vision::Rect region{(size.width - w) / 2, (size.height - h) / 2, w, h};
+    char line[640];
+    vision::CardTracker& tracker = cardStage_->tracker();
+    if (!tracker.train(state_.frame.image, state_.chroma, region)) {
+        std::snprintf(line, sizeof line,
+                      "card: training failed (no usable pixels in the centre)\n");
+    } else {
+        const vision::CardColorModel& m = tracker.trainedModel();
+        const bool saved = cardStore_ && cardStore_->save(m);
+        std::snprintf(line, sizeof line,
+                      "card: trained on the central %.0f%% (r %.1f g %.1f b %.1f, sigma %.1f %.1f "
+                      "%.1f), %s %.400s\n",
+                      f * 100, static_cast<double>(m.mean[0]), static_cast<double>(m.mean[1]),
+                      static_cast<double>(m.mean[2]), static_cast<double>(m.sigma[0]),
+                      static_cast<double>(m.sigma[1]), static_cast<double>(m.sigma[2]),
+                      saved ? "saved to" : "NOT saved:",
+                      saved ? cardStore_->path().c_str()
+                            : (cardStore_ ? cardStore_->lastError() : "no state folder"));
+    }
+    MIRROR_LOG_INFO("%.*s", static_cast<int>(std::strlen(line)) - 1, line);
+    if (console_)
+        console_->write(line);
+}
+
+void FrameLoop::noteCardState() noexcept
+{
+    const vision::CardState now =
+        state_.card ? state_.card->state : cardStage_->tracker().observation().state;
+    if (now != cardState_)
+        MIRROR_LOG_INFO("card: %s -> %s", vision::cardStateName(cardState_),
+                        vision::cardStateName(now));
+    cardState_ = now;
+}
+
+void FrameLoop::formatCard(Reply& reply) const noexcept
+{
+    const vision::CardTracker& tracker = cardStage_->tracker();
+    const vision::CardObservation& o = tracker.observation();
+    reply.printf("card: %s, confidence %.2f, area %d px\n", vision::cardStateName(o.state),
+                 static_cast<double>(o.confidence), o.area);
+    if (o.hasQuad)
+        reply.printf("corners: (%.1f, %.1f) (%.1f, %.1f) (%.1f, %.1f) (%.1f, %.1f)\n",
+                     static_cast<double>(o.quad[0].x), static_cast<double>(o.quad[0].y),
+                     static_cast<double>(o.quad[1].x), static_cast<double>(o.quad[1].y),
+                     static_cast<double>(o.quad[2].x), static_cast<double>(o.quad[2].y),
+                     static_cast<double>(o.quad[3].x), static_cast<double>(o.quad[3].y));
+    const vision::CardColorModel& m = tracker.trainedModel();
+    if (m.valid)
+        reply.printf("colour: r %.1f g %.1f b %.1f, sigma %.1f %.1f %.1f (%s)\n",
+                     static_cast<double>(m.mean[0]), static_cast<double>(m.mean[1]),
+                     static_cast<double>(m.mean[2]), static_cast<double>(m.sigma[0]),
+                     static_cast<double>(m.sigma[1]), static_cast<double>(m.sigma[2]),
+                     cardStore_ ? cardStore_->path().c_str() : "not kept");
+    else
+        reply.printf("colour: not trained (card train)\n");
+    reply.printf("picture: %s\n",
+                 cardLayer_->outlineMode() ? "none (drawing the outline)" : "shown on the card");
 }
 
 void FrameLoop::noteSourceStatus(platform::SourceStatus status) noexcept
@@ -250,9 +383,14 @@ void FrameLoop::formatHud() noexcept
     double visionMs = 0.0;
     for (std::size_t i = kFirstVisionStep; i < renderStep_; ++i)
         visionMs += timings_[i].interval.meanMs();
-    std::snprintf(hud_, sizeof hud_, "%.1f fps  frame %llu\nvision %.2f ms  render %.2f ms", fps_,
-                  static_cast<unsigned long long>(framesShown_), visionMs,
-                  timings_[renderStep_].interval.meanMs());
+    const int n =
+        std::snprintf(hud_, sizeof hud_, "%.1f fps  frame %llu\nvision %.2f ms  render %.2f ms",
+                      fps_, static_cast<unsigned long long>(framesShown_), visionMs,
+                      timings_[renderStep_].interval.meanMs());
+    if (cardStage_ && n > 0 && n < static_cast<int>(sizeof hud_))
+        std::snprintf(hud_ + n, sizeof hud_ - static_cast<std::size_t>(n), "\ncard %s %.2f",
+                      vision::cardStateName(cardState_),
+                      static_cast<double>(cardStage_->tracker().observation().confidence));
 }
 
 void FrameLoop::formatStatus(Reply& reply) const noexcept
@@ -262,6 +400,8 @@ void FrameLoop::formatStatus(Reply& reply) const noexcept
                  static_cast<unsigned long long>(badFrames_));
     reply.printf("source: %s%s\n", source_->description(), sourceLost_ ? " [LOST]" : "");
     reply.printf("display: %s%s\n", display_->description(), displayDown_ ? " [UNAVAILABLE]" : "");
+    if (cardStage_)
+        reply.printf("card: %s\n", vision::cardStateName(cardState_));
     reply.printf("%-14s %8s %8s %8s\n", "stage", "p50 ms", "p99 ms", "mean ms");
     for (std::size_t i = 0; i < stepCount_; ++i) {
         const LatencyHistogram& h = timings_[i].total;
@@ -287,6 +427,25 @@ void FrameLoop::registerCommands()
                [this](const Args&, Reply& reply) noexcept {
                    reply.printf("# from %s\n%s", config_.origin.c_str(), configToml_.c_str());
                });
+    if (cardStage_)
+        shell_.add("card", "card [train|reset]",
+                   "the colour card: state and colour; train on the centre of the next frame; "
+                   "forget the track",
+                   [this](const Args& args, Reply& reply) noexcept {
+                       if (args.size() == 1) {
+                           formatCard(reply);
+                       } else if (args[1] == "train" && args.size() == 2) {
+                           requestCardTraining();
+                           reply.printf(
+                               "card: hold the card in the middle of the view; training "
+                               "on the next frame\n");
+                       } else if (args[1] == "reset" && args.size() == 2) {
+                           cardStage_->tracker().reset();
+                           reply.printf("card: track reset, searching\n");
+                       } else {
+                           reply.printf("error: usage: card [train|reset]\n");
+                       }
+                   });
     shell_.add("quit", "quit", "stop the mirror (the service manager may restart it)",
                [this](const Args&, Reply& reply) noexcept {
                    reply.printf("bye\n");

@@ -348,7 +348,7 @@ const std::map<std::string, std::vector<std::string>> kBadFiles = {
      {"3:1: display.widht: unknown key (allowed: spec, width, height, fit, mirror, hud, "
       "snapshot_every)"}},
     {"bad_unknown_section.toml",
-     {"4:2: camera: unknown section (allowed: source, display, log, console, vision)"}},
+     {"4:2: camera: unknown section (allowed: source, display, log, console, vision, card, state)"}},
     {"bad_wrong_type.toml", {"2:9: source.width: expected integer, got string"}},
     {"bad_float_for_int.toml", {"2:9: source.width: expected integer, got float"}},
     {"bad_out_of_range.toml", {"2:9: display.width: 4000000 is out of range (allowed: 16..7680)"}},
@@ -382,7 +382,7 @@ const std::map<std::string, std::vector<std::string>> kBadFiles = {
       "10:1: display.colour: unknown key (allowed: spec, width, height, fit, mirror, hud, "
       "snapshot_every)",
       "13:22: log.summary_interval_s: -1 is out of range (allowed: 0..3600)",
-      "15:2: extras: unknown section (allowed: source, display, log, console, vision)"}},
+      "15:2: extras: unknown section (allowed: source, display, log, console, vision, card, state)"}},
 };
 
 TEST(ConfigBadFiles, EachReportsExactlyItsProblems)
@@ -571,7 +571,7 @@ TEST(ConfigProblems, NestedUnknownKeys)
               "t.toml:1:9: source.extra: unknown key (allowed: spec, width, height, fps, loop, "
               "rate, card)");
     EXPECT_EQ(problemOf("[vision]\n\"odd key\" = 1\n"),
-              "t.toml:2:1: vision.\"odd key\": unknown key (allowed: chromaticity)");
+              "t.toml:2:1: vision.\"odd key\": unknown key (allowed: chromaticity, deinterlace)");
 }
 
 TEST(ConfigProblems, ErrorCarriesEveryProblemAndJoinsThemByLine)

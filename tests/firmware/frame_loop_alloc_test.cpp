@@ -30,6 +30,7 @@ TEST(FrameLoopAllocations, SteadyStateLoopMakesNoHeapAllocations)
     config.display.hud = true;
     config.display.snapshotEvery = 100;  // snapshots inside the counted frames too
     config.log.summaryIntervalS = 0.05;  // summaries inside the counted frames too
+    config.state.dir = testing_support::freshOutputDir("frame_loop_alloc_state");
     const int devNull = ::open("/dev/null", O_WRONLY);
     firmware::setLogFd(devNull);
 

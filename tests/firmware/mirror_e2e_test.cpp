@@ -26,8 +26,10 @@ struct RunResult {
 
 RunResult runMirror(const std::string& args)
 {
-    const std::string command =
-        testing_support::binaryDir() + "/bin/mirror " + args + " </dev/null 2>&1";
+    // Tests keep what the mirror learns in the build tree, never in /var/lib/mirror.
+    const std::string command = testing_support::binaryDir() + "/bin/mirror --set 'state.dir=\"" +
+                                testing_support::binaryDir() + "/test-output/e2e_state\"' " + args +
+                                " </dev/null 2>&1";
     RunResult result;
     FILE* pipe = ::popen(command.c_str(), "r");
     if (!pipe)

@@ -53,7 +53,23 @@ struct ConsoleConfig {
 };
 
 struct VisionConfig {
-    bool chromaticity = true;  ///< ch. 3: normalised-RGB planes for the colour trackers
+    bool chromaticity =
+        true;  ///< ch. 3: normalised-RGB planes (forced on when a colour tracker runs)
+    bool deinterlace = false;  ///< 4.2.4: remove interlace tearing first
+};
+
+struct CardConfig {
+    bool enabled = true;
+    std::string picture;  ///< PNG/JPEG shown on the card; "" = the built-in picture
+    double trainFraction =
+        0.5;                 ///< central share of width and height that `card train` learns from
+    double threshold = 3.0;  ///< colour test in standard deviations
+    double alpha = 0.25;     ///< model update: weight of the trained colour
+    double beta = 0.75;      ///< model update: weight of the previous colour
+};
+
+struct StateConfig {
+    std::string dir = "/var/lib/mirror";  ///< what the mirror learns, kept across restarts
 };
 
 struct Config {
@@ -62,8 +78,10 @@ struct Config {
     LogConfig log;
     ConsoleConfig console;
     VisionConfig vision;
-    std::string
-        origin;  ///< where it came from, e.g. "/etc/mirror/mirror.toml" or "built-in defaults"
+    CardConfig card;
+    StateConfig state;
+    /// Where it came from, e.g. "/etc/mirror/mirror.toml" or "built-in defaults".
+    std::string origin;
 };
 
 /// One problem found in a config file, printed as `FILE:LINE:COL: key: what is wrong (allowed:

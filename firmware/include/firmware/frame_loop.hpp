@@ -7,13 +7,16 @@
 // never allocates: device errors become states (source lost, display unavailable) that are logged
 // once when they begin and once when they end.
 
+#include "firmware/card_model_store.hpp"
 #include "firmware/command_shell.hpp"
 #include "firmware/config.hpp"
 #include "firmware/latency_histogram.hpp"
 #include "platform/console.hpp"
 #include "platform/display.hpp"
 #include "platform/frame_source.hpp"
+#include "render/card_picture_layer.hpp"
 #include "render/renderer.hpp"
+#include "vision/card_stage.hpp"
 #include "vision/pipeline.hpp"
 
 #include <array>
@@ -63,8 +66,17 @@ public:
     double fps() const noexcept { return fps_; }
     /// Writes the status report (as the `status` command prints it).
     void formatStatus(Reply& reply) const noexcept;
+    /// The card tracker's stage, or null when [card] enabled = false.
+    vision::CardStage* cardStage() noexcept { return cardStage_; }
+    /// Trains the card colour on the next good frame (as `card train` does).
+    void requestCardTraining() noexcept { cardTrainPending_ = true; }
 
 private:
+    void buildPipeline(vision::Size size, vision::PixelFormat format);
+    void setUpCard(vision::Size size);
+    void trainCard() noexcept;
+    void noteCardState() noexcept;
+    void formatCard(Reply& reply) const noexcept;
     void registerCommands();
     void stepSource() noexcept;
     void noteSourceStatus(platform::SourceStatus status) noexcept;
@@ -87,6 +99,13 @@ private:
     vision::Frame frame_;
     CommandShell shell_;
     platform::Console* console_ = nullptr;
+
+    // The colour card (ch. 4): its stage lives in the pipeline; the picture layer in the renderer.
+    vision::CardStage* cardStage_ = nullptr;
+    std::unique_ptr<CardModelStore> cardStore_;
+    std::unique_ptr<render::CardPictureLayer> cardLayer_;
+    vision::CardState cardState_ = vision::CardState::Untrained;
+    bool cardTrainPending_ = false;
 
     // Steps: wait (idle until the frame is due), capture (decode, copy), the vision stages from
     // kFirstVisionStep on, then render and present.
