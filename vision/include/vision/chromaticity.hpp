@@ -5,7 +5,8 @@
 //
 // Exactness: every output equals round(255 * c / (R+G+B)) with halves rounded up, and 0 when the
 // sum is 0 (the dissertation's Table 1 OpenCV code divides by 3 in 8 bits first and is off by up to
-// 255).
+// 255). The table loop below is the reference; the SIMD paths (SSE2, SSE4.1, AVX2, AVX-512, NEON;
+// ChromaticityPath) compute the same bytes arithmetically and are tested bit-exact against it.
 
 #include "vision/image.hpp"
 
@@ -40,10 +41,42 @@ struct ChromaticityPlanes {
     ImageView b;
 };
 
-/// Converts an RGB24, BGR24 or XRGB8888 image to chromaticity planes with the table; the scalar
-/// path, unrolled by 4 (4.3). Returns false (and writes nothing) on an unsupported format or size
-/// mismatch.
+/// Implementations of the conversion. Every path produces exactly the table's values
+/// (round(255 c / sum), halves up, 0 for sum 0); the SIMD paths compute them with a reciprocal and
+/// an exact integer correction instead of the table (proof in chromaticity.cpp).
+enum class ChromaticityPath : std::uint8_t {
+    Scalar,  ///< the table look-up loop of 4.3, unrolled by 4: the reference
+    Sse2,    ///< x86-64 baseline
+    Sse41,   ///< x86-64 with SSE4.1 (byte shuffles de-interleave the pixels)
+    Avx2,    ///< x86-64 with AVX2 and FMA: the SSE4.1 arithmetic on 16 lanes
+    Avx512,  ///< x86-64 with AVX-512 BW, VL and VBMI: 32 lanes, byte permutes de-interleave
+    Neon,    ///< aarch64
+    Best,    ///< the fastest path this CPU supports
+};
+
+const char* chromaticityPathName(ChromaticityPath path) noexcept;
+/// True when this build and CPU can run the path (Scalar and Best always).
+bool chromaticityPathAvailable(ChromaticityPath path) noexcept;
+/// The concrete path Best stands for on this CPU.
+ChromaticityPath bestChromaticityPath() noexcept;
+
+/// Converts an image to chromaticity planes. Formats: RGB24, BGR24, XRGB8888, and the YUV camera
+/// formats YUYV and NV12 (even width; NV12 even height), which are first converted to RGB with the
+/// fixed-point BT.601 formula of yuv.hpp (in 256-pixel pieces on the stack): chromaticity of YUV
+/// input is by definition the chromaticity of that fixed-point RGB. Returns false (and writes
+/// nothing) on an unsupported format, a size mismatch, or a path this CPU cannot run.
+bool convertChromaticity(const ChromaticityTable& table, const ConstImageView& input,
+                         const ChromaticityPlanes& output, ChromaticityPath path) noexcept;
+
+/// The same with ChromaticityPath::Best (what the pipeline uses).
 bool convertChromaticity(const ChromaticityTable& table, const ConstImageView& input,
                          const ChromaticityPlanes& output) noexcept;
+
+/// For tests: out[i] = table entry row(sum[i])[min(c[i], sum[i])] computed by the path's own
+/// arithmetic (no table on SIMD paths), sum[i] in 0..765, c[i] in 0..255. Lets a test run every
+/// (c, sum) pair through the SIMD kernel. Returns false for an unavailable path.
+bool chromaticityQuotients(const ChromaticityTable& table, ChromaticityPath path,
+                           const std::uint16_t* c, const std::uint16_t* sum, std::uint8_t* out,
+                           int n) noexcept;
 
 }  // namespace vision
