@@ -1,0 +1,116 @@
+#include "vision/card_color_model.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+using namespace vision;
+
+namespace {
+
+struct Planes {
+    ImageBuffer r{8, 4, PixelFormat::Gray8}, g{8, 4, PixelFormat::Gray8},
+        b{8, 4, PixelFormat::Gray8};
+    ChromaticityPlanes view() { return {r.view(), g.view(), b.view()}; }
+};
+
+}  // namespace
+
+TEST(CardColorModel, TrainsMeanAndSigmaWithFloor)
+{
+    Planes p;
+    for (int y = 0; y < 4; ++y)
+        for (int x = 0; x < 8; ++x) {
+            p.r.view().row(y)[x] = static_cast<std::uint8_t>(x < 4 ? 100 : 110);  // sigma 5
+            p.g.view().row(y)[x] = 80;                                            // sigma 0
+            p.b.view().row(y)[x] = 75;
+        }
+    CardColorModel m;
+    ASSERT_TRUE(trainColorModel(p.view(), {0, 0, 8, 4}, 2.f, m));
+    EXPECT_TRUE(m.valid);
+    EXPECT_FLOAT_EQ(m.mean[0], 105.f);
+    EXPECT_FLOAT_EQ(m.sigma[0], 5.f);
+    EXPECT_FLOAT_EQ(m.mean[1], 80.f);
+    EXPECT_FLOAT_EQ(m.sigma[1], 2.f);  // floored
+    CardColorModel untouched;
+    EXPECT_FALSE(trainColorModel(p.view(), {20, 20, 5, 5}, 2.f, untouched));
+    EXPECT_FALSE(untouched.valid);
+    // Clipped region: only the left half.
+    ASSERT_TRUE(trainColorModel(p.view(), {-4, -4, 8, 20}, 2.f, m));
+    EXPECT_FLOAT_EQ(m.mean[0], 100.f);
+}
+
+TEST(CardColorModel, BoundsEqualTheStrictGaussianTest)
+{
+    CardColorModel m;
+    m.mean[0] = 100.3f;
+    m.sigma[0] = 2.f;
+    m.mean[1] = 10.f;
+    m.sigma[1] = 5.f;
+    m.mean[2] = 250.f;
+    m.sigma[2] = 4.f;
+    m.valid = true;
+    const float t = 2.5f;
+    const ColorBounds b = colorBounds(m, t);
+    for (int c = 0; c < 3; ++c)
+        for (int x = 0; x < 256; ++x) {
+            const bool expected = std::fabs(float(x) - m.mean[c]) < t * m.sigma[c];
+            const bool got = x >= b.lo[c] && x <= b.hi[c];
+            EXPECT_EQ(got, expected) << "channel " << c << " x " << x;
+        }
+    EXPECT_TRUE(matchesColor(b, 100, 10, 250));
+    EXPECT_FALSE(matchesColor(b, 106, 10, 250));
+    EXPECT_FALSE(matchesColor(colorBounds(CardColorModel{}, t), 0, 0, 0));
+}
+
+TEST(CardColorModel, UpdateFormula)
+{
+    CardColorModel trained, prev, cur;
+    trained.valid = prev.valid = cur.valid = true;
+    for (int c = 0; c < 3; ++c) {
+        trained.mean[c] = 100.f;
+        trained.sigma[c] = 4.f;
+        prev.mean[c] = 110.f;
+        prev.sigma[c] = 6.f;
+        cur.mean[c] = 130.f;
+        cur.sigma[c] = 10.f;
+    }
+    const float a = 0.25f, b = 0.75f;
+    const CardColorModel out = blendColorModel(trained, prev, cur, a, b);
+    for (int c = 0; c < 3; ++c) {
+        EXPECT_FLOAT_EQ(out.mean[c], a * 100.f + (1 - a) * (b * 110.f + (1 - b) * 130.f));
+        EXPECT_FLOAT_EQ(out.sigma[c], a * 4.f + (1 - a) * (b * 6.f + (1 - b) * 10.f));
+    }
+    // a = 1 anchors to training; a = 0, b = 1 keeps the previous model.
+    EXPECT_FLOAT_EQ(blendColorModel(trained, prev, cur, 1.f, 0.3f).mean[0], 100.f);
+    EXPECT_FLOAT_EQ(blendColorModel(trained, prev, cur, 0.f, 1.f).mean[0], 110.f);
+    // Repeated updates with a > 0 stay bounded near training even when the current runs away.
+    CardColorModel m = trained;
+    for (int i = 0; i < 200; ++i)
+        m = blendColorModel(trained, m, cur, a, b);
+    EXPECT_NEAR(m.mean[0], 100.f + (1 - a) * (1 - b) * 30.f / (1 - (1 - a) * b), 1e-3f);
+}
+
+TEST(CardColorModel, ColorTestAndMeasureOverAMask)
+{
+    Planes p;
+    ImageBuffer mask(8, 4, PixelFormat::Gray8);
+    for (int y = 0; y < 4; ++y)
+        for (int x = 0; x < 8; ++x) {
+            const bool card = x >= 2 && x < 6;
+            p.r.view().row(y)[x] = card ? 40 : 85;
+            p.g.view().row(y)[x] = card ? 60 : 85;
+            p.b.view().row(y)[x] = card ? 155 : 85;
+        }
+    CardColorModel m;
+    ASSERT_TRUE(trainColorModel(p.view(), {2, 0, 4, 4}, 2.f, m));
+    colorTest(p.view(), colorBounds(m, 3.f), {0, 0, 8, 4}, mask.view());
+    for (int y = 0; y < 4; ++y)
+        for (int x = 0; x < 8; ++x)
+            EXPECT_EQ(mask.view().row(y)[x], (x >= 2 && x < 6) ? 255 : 0);
+    CardColorModel measured;
+    ASSERT_TRUE(measureColorModel(p.view(), mask.view(), {0, 0, 8, 4}, 1, 2.f, 4, measured));
+    EXPECT_FLOAT_EQ(measured.mean[2], 155.f);
+    EXPECT_FLOAT_EQ(colorFit(m, measured, 3.f), 1.f);
+    EXPECT_FALSE(measureColorModel(p.view(), mask.view(), {0, 0, 2, 4}, 1, 2.f, 1, measured));
+}

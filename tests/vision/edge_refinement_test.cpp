@@ -1,0 +1,124 @@
+#include "vision/edge_refinement.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+using namespace vision;
+
+namespace {
+
+bool inside(const Quad& q, float x, float y)
+{
+    for (int i = 0; i < 4; ++i) {
+        const Point2f a = q[i], b = q[(i + 1) % 4];
+        if ((b.x - a.x) * (y - a.y) - (b.y - a.y) * (x - a.x) < 0)
+            return false;
+    }
+    return true;
+}
+
+/// A blue card with anti-aliased edges (4x4 supersampling) on a grey, slightly textured ground.
+ImageBuffer render(const Quad& card, int w, int h, PixelFormat format = PixelFormat::RGB24)
+{
+    ImageBuffer img(w, h, format);
+    const int bpp = bytesPerPixel(format);
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            int n = 0;
+            for (int sy = 0; sy < 4; ++sy)
+                for (int sx = 0; sx < 4; ++sx)
+                    n += inside(card, float(x) - 0.375f + 0.25f * float(sx),
+                                float(y) - 0.375f + 0.25f * float(sy));
+            const float c = float(n) / 16.f;
+            const float g = 120.f + 10.f * std::sin(float(x) * 0.3f) * std::cos(float(y) * 0.2f);
+            const float rgb[3] = {g + c * (40.f - g), g + c * (80.f - g), g + c * (200.f - g)};
+            std::uint8_t* p = img.view().row(y) + x * bpp;
+            for (int k = 0; k < 3; ++k)
+                p[k] = static_cast<std::uint8_t>(std::lround(rgb[k]));
+        }
+    return img;
+}
+
+double maxCornerError(const Quad& a, const Quad& b)
+{
+    double e = 0;
+    for (int i = 0; i < 4; ++i)
+        e = std::max(e, double(std::hypot(a[i].x - b[i].x, a[i].y - b[i].y)));
+    return e;
+}
+
+}  // namespace
+
+TEST(EdgeRefinement, SaturationOfAPixel)
+{
+    const std::uint8_t grey[3] = {90, 90, 90}, red[3] = {200, 0, 0}, black[3] = {0, 0, 0},
+                       half[3] = {100, 50, 100};
+    EXPECT_EQ(saturation8(grey), 0);
+    EXPECT_EQ(saturation8(red), 255);
+    EXPECT_EQ(saturation8(black), 0);
+    EXPECT_EQ(saturation8(half), 128);  // 255 * 50 / 100 = 127.5, rounded up
+}
+
+TEST(EdgeRefinement, FindsTheTrueCornersFromAnOffsetQuad)
+{
+    const Quad truth = {{{52.3f, 41.7f}, {181.6f, 55.2f}, {170.4f, 148.9f}, {45.1f, 131.3f}}};
+    const ImageBuffer img = render(truth, 240, 190);
+    Quad guess = truth;
+    const float off[4][2] = {{3, 2}, {-2, 3}, {-3, -2}, {2, -3}};  // 2-4 px inside
+    for (int i = 0; i < 4; ++i)
+        guess[i] = {truth[i].x + off[i][0], truth[i].y + off[i][1]};
+    EdgeRefinement r;
+    ASSERT_TRUE(refineQuad(img.view(), guess, {}, r));
+    EXPECT_EQ(r.edgesFitted, 4);
+    EXPECT_LT(maxCornerError(r.quad, truth), 0.35);
+    // Same answer from XRGB8888 (order-independent saturation).
+    const ImageBuffer x = render(truth, 240, 190, PixelFormat::XRGB8888);
+    EdgeRefinement rx;
+    ASSERT_TRUE(refineQuad(x.view(), guess, {}, rx));
+    EXPECT_LT(maxCornerError(rx.quad, r.quad), 1e-4);
+}
+
+TEST(EdgeRefinement, RansacIgnoresAnOccluderOnAnEdge)
+{
+    const Quad truth = {{{40.f, 30.f}, {200.f, 30.f}, {200.f, 150.f}, {40.f, 150.f}}};
+    ImageBuffer img = render(truth, 240, 190);
+    // A skin-coloured block over a third of the right edge.
+    for (int y = 60; y < 100; ++y)
+        for (int x = 180; x < 215; ++x) {
+            std::uint8_t* p = img.view().row(y) + x * 3;
+            p[0] = 210;
+            p[1] = 160;
+            p[2] = 130;
+        }
+    Quad guess = truth;
+    guess[1].x -= 3;
+    guess[2].x -= 2;
+    EdgeRefinement r;
+    ASSERT_TRUE(refineQuad(img.view(), guess, {}, r));
+    EXPECT_EQ(r.edgesFitted, 4);
+    EXPECT_LT(maxCornerError(r.quad, truth), 0.5);
+}
+
+TEST(EdgeRefinement, CornerOutsideTheFrameIsExtrapolated)
+{
+    const Quad truth = {{{-20.f, 30.f}, {150.f, 20.f}, {160.f, 130.f}, {10.f, 140.f}}};
+    const ImageBuffer img = render(truth, 200, 170);
+    Quad guess = truth;
+    for (Point2f& p : guess)
+        p.x += 2.f;
+    EdgeRefinement r;
+    ASSERT_TRUE(refineQuad(img.view(), guess, {}, r));
+    EXPECT_EQ(r.edgesFitted, 4);  // the left edge is half visible
+    // The corner 20 px outside is extrapolated from the visible third of its edge.
+    EXPECT_LT(maxCornerError(r.quad, truth), 1.5);
+}
+
+TEST(EdgeRefinement, RejectsDegenerateInput)
+{
+    const ImageBuffer img = render({{{10, 10}, {50, 10}, {50, 50}, {10, 50}}}, 64, 64);
+    EdgeRefinement r;
+    EXPECT_FALSE(refineQuad(img.view(), {{{10, 10}, {11, 10}, {11, 11}, {10, 11}}}, {}, r));
+    ImageBuffer gray(64, 64, PixelFormat::Gray8);
+    EXPECT_FALSE(refineQuad(gray.view(), {{{10, 10}, {50, 10}, {50, 50}, {10, 50}}}, {}, r));
+}

@@ -1,0 +1,71 @@
+#pragma once
+// Edge refinement of the card's quad (step 5 of METHOD.md §2 and 4.3).
+//
+// Along a sparse set of sample lines across each quad edge, walk from inside the quad to the
+// outside; the edge is where the gradient of saturation S = (max - min) / max first exceeds a
+// threshold. Near-vertical edges are crossed along a row (horizontal gradient), near-horizontal
+// ones along a column (vertical gradient). Saturation is computed only on those sample lines
+// (4.3: touch only the pixels needed). Each edge gets a RANSAC line; corners are the
+// intersections of adjacent lines, so a corner outside the frame is extrapolated from the visible
+// parts of its two edges (the sample lines are spread over the part of each edge in the frame).
+//
+// Beyond the dissertation, for sub-pixel accuracy and robustness:
+//  - each sample is the mean over a short band of pixels along the edge (sensor noise);
+//  - the sub-pixel position comes from the colour blend across the edge (the card's share summed
+//    over the transition pixels), because S is not monotonic across an edge between
+//    complementary colours and its gradient alone only places the edge to half a pixel;
+//  - interlaced video (odd rows from the previous field): row walks use even rows only and column
+//    walks deinterlace odd rows with the rule of 4.2.4, so the edge found is the current field's;
+//  - near-black pixels have their saturation computed against a floor (kSaturationDarkFloor).
+
+#include "vision/geometry.hpp"
+#include "vision/image.hpp"
+#include "vision/line_fit.hpp"
+
+namespace vision {
+
+struct EdgeRefinementOptions {
+    int normalsPerEdge = 12;           ///< sample lines per edge (at most kMaxNormalsPerEdge)
+    float saturationGradient = 0.12f;  ///< S step (S in 0..1) that marks the edge
+    float searchInside = 8.f;          ///< walk starts this far inside the edge (pixels, normal)
+    float searchOutside = 8.f;         ///< and ends this far outside
+    float inlierDistance = 1.0f;       ///< RANSAC inlier band (pixels)
+    int ransacIterations = 80;
+    float minInlierShare = 0.4f;  ///< an edge needs this share of its sample lines as inliers
+    float endMargin = 0.1f;       ///< sample lines avoid this share of the edge at each end
+    int band = 2;                 ///< saturation averaged over 2 band + 1 pixels along the edge
+};
+
+inline constexpr int kMaxNormalsPerEdge = 64;
+
+struct EdgeRefinement {
+    Quad quad{};          ///< refined corners (an edge without a good fit keeps its input line)
+    Line2f lines[4];      ///< edge i runs from corner i to corner i + 1
+    bool fitted[4] = {};  ///< edge i was fitted to image evidence
+    int normals = 0;      ///< sample lines walked (inside the image)
+    int samples = 0;      ///< edge points found
+    int inliers = 0;      ///< of those, inliers of their edge's line
+    int edgesFitted = 0;
+};
+
+/// 8-bit saturation 255 (max - min) / max of a pixel's first three bytes (order-independent).
+/// The denominator is at least kSaturationDarkFloor: the saturation of near-black pixels is pure
+/// noise ((0, 0, 1) would be fully saturated) and would read as edges next to dark backgrounds.
+inline constexpr int kSaturationDarkFloor = 32;
+inline int saturation8(const std::uint8_t* p) noexcept
+{
+    int mx = p[0], mn = p[0];
+    mx = p[1] > mx ? p[1] : mx;
+    mn = p[1] < mn ? p[1] : mn;
+    mx = p[2] > mx ? p[2] : mx;
+    mn = p[2] < mn ? p[2] : mn;
+    const int den = mx > kSaturationDarkFloor ? mx : kSaturationDarkFloor;
+    return (255 * (mx - mn) + den / 2) / den;
+}
+
+/// Refines `quad` (clockwise on screen) in `rgb` (RGB24, BGR24 or XRGB8888). False when the image
+/// format is unsupported or the quad degenerate; `out.quad` is then the input.
+bool refineQuad(const ConstImageView& rgb, const Quad& quad, const EdgeRefinementOptions& options,
+                EdgeRefinement& out) noexcept;
+
+}  // namespace vision

@@ -1,0 +1,244 @@
+#include "vision/edge_refinement.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+
+namespace vision {
+
+namespace {
+
+constexpr int kMaxWalk = 160;
+constexpr int kMaxBand = 4;
+
+/// Pixel (x, y) through the deinterlacing rule of 4.2.4, per channel: on an odd row, a value that
+/// differs from the even rows' above and below more than they differ from each other is the
+/// previous field (tearing) and is replaced by their mean; static detail keeps its own value.
+void fieldPixel(const ConstImageView& rgb, int bpp, int x, int y, std::uint8_t out[3]) noexcept
+{
+    const std::ptrdiff_t off = static_cast<std::ptrdiff_t>(x) * bpp;
+    const std::uint8_t* p = rgb.row(y) + off;
+    if ((y & 1) == 0 || y + 1 >= rgb.height) {
+        out[0] = p[0];
+        out[1] = p[1];
+        out[2] = p[2];
+        return;
+    }
+    const std::uint8_t* a = rgb.row(y - 1) + off;
+    const std::uint8_t* b = rgb.row(y + 1) + off;
+    for (int c = 0; c < 3; ++c)
+        out[c] = std::abs(b[c] - a[c]) < std::abs(p[c] - a[c])
+                     ? static_cast<std::uint8_t>((a[c] + b[c] + 1) / 2)
+                     : p[c];
+}
+
+/// Walks one sample line: from (x, y) in steps of (dx, dy) (one of them 0, the other +-1) for at
+/// most `steps` pixels. Each step's saturation (and colour) is the mean over a short band of
+/// 2 * band + 1 pixels that follows the edge's direction (offset `slope` pixels along the walk per
+/// pixel across it), which cuts sensor noise without blurring the edge.
+///
+/// The edge is where the saturation gradient first exceeds `threshold`. Its sub-pixel position
+/// comes from the colours around it, not from S: across a box-filtered (anti-aliased or slightly
+/// blurred) edge each pixel is a blend of the card colour (2 steps before the gradient peak) and
+/// the background colour (3 steps after it), so the card's share summed over the transition is
+/// the edge's distance from the last pure card pixel. S itself is not monotonic across an edge
+/// between complementary colours (the blend is grey), so its gradient would only place the edge
+/// at half-pixel steps. Returns the offset (in steps from the start), or -1.
+float walk(const ConstImageView& rgb, int bpp, int x, int y, int dx, int dy, int steps, int band,
+           float slope, int threshold) noexcept
+{
+    // Saturation and colour in 1/16 units so the band mean keeps some fraction.
+    int s[kMaxWalk];
+    int col[kMaxWalk][3];
+    int offsets[2 * kMaxBand + 1];
+    const int b = std::clamp(band, 0, kMaxBand);
+    // A horizontal walk's band uses every other row: with interlaced video (odd rows from the
+    // previous field) it then sees one field only, the even (current) one. A vertical walk
+    // crosses odd rows and deinterlaces them (fieldPixel).
+    const int stride = dx != 0 ? 2 : 1;
+    for (int j = -b; j <= b; ++j)
+        offsets[j + b] = static_cast<int>(std::lround(static_cast<float>(j * stride) * slope));
+    int n = 0;
+    for (; n < steps && n < kMaxWalk; ++n, x += dx, y += dy) {
+        if (x < 0 || y < 0 || x >= rgb.width || y >= rgb.height)
+            break;
+        int sum = 0, count = 0, c0 = 0, c1 = 0, c2 = 0;
+        for (int j = -b; j <= b; ++j) {
+            // Across the walk: rows for a horizontal walk, columns for a vertical one.
+            const int px = dx != 0 ? x + offsets[j + b] : x + j;
+            const int py = dx != 0 ? y + j * stride : y + offsets[j + b];
+            if (px < 0 || py < 0 || px >= rgb.width || py >= rgb.height)
+                continue;
+            std::uint8_t p[3];
+            fieldPixel(rgb, bpp, px, py, p);
+            sum += saturation8(p);
+            c0 += p[0];
+            c1 += p[1];
+            c2 += p[2];
+            ++count;
+        }
+        const int half = count / 2;
+        const int d = count > 0 ? count : 1;
+        s[n] = (sum * 16 + half) / d;
+        col[n][0] = (c0 * 16 + half) / d;
+        col[n][1] = (c1 * 16 + half) / d;
+        col[n][2] = (c2 * 16 + half) / d;
+    }
+    threshold *= 16;
+    // g_k = s_{k+1} - s_k sits half-way between the two pixels.
+    for (int k = 0; k + 1 < n; ++k) {
+        if (std::abs(s[k + 1] - s[k]) < threshold)
+            continue;
+        int m = k;
+        while (m + 2 < n && std::abs(s[m + 2] - s[m + 1]) > std::abs(s[m + 1] - s[m]))
+            ++m;
+        const int first = m - 2, last = m + 3;  // pure card, pure background
+        if (first < 0 || last >= n)
+            return -1.f;  // the transition runs off the walk: its position would be biased
+        const float d0 = static_cast<float>(col[first][0] - col[last][0]);
+        const float d1 = static_cast<float>(col[first][1] - col[last][1]);
+        const float d2 = static_cast<float>(col[first][2] - col[last][2]);
+        const float den = d0 * d0 + d1 * d1 + d2 * d2;
+        if (den < 16.f * 16.f * 24.f * 24.f)  // colours closer than ~24 levels: no usable blend
+            return static_cast<float>(m) + 0.5f;
+        float card = 0.f;
+        for (int i = first + 1; i < last; ++i) {
+            const float f = (static_cast<float>(col[i][0] - col[last][0]) * d0 +
+                             static_cast<float>(col[i][1] - col[last][1]) * d1 +
+                             static_cast<float>(col[i][2] - col[last][2]) * d2) /
+                            den;
+            card += std::clamp(f, 0.f, 1.f);
+        }
+        return static_cast<float>(first) + 0.5f + card;
+    }
+    return -1.f;
+}
+
+/// Liang-Barsky: narrows [t0, t1] to the part of a + t (ex, ey) inside [0, maxX] x [0, maxY].
+void clipToFrame(Point2f a, float ex, float ey, float maxX, float maxY, float& t0,
+                 float& t1) noexcept
+{
+    const float p[4] = {-ex, ex, -ey, ey};
+    const float q[4] = {a.x, maxX - a.x, a.y, maxY - a.y};
+    for (int i = 0; i < 4; ++i) {
+        if (std::fabs(p[i]) < 1e-9f) {
+            if (q[i] < 0.f)
+                t1 = t0 - 1.f;  // parallel and outside: empty
+            continue;
+        }
+        const float r = q[i] / p[i];
+        if (p[i] < 0.f)
+            t0 = std::max(t0, r);
+        else
+            t1 = std::min(t1, r);
+    }
+}
+
+}  // namespace
+
+bool refineQuad(const ConstImageView& rgb, const Quad& quad, const EdgeRefinementOptions& options,
+                EdgeRefinement& out) noexcept
+{
+    out = EdgeRefinement{};
+    out.quad = quad;
+    const int bpp = rgb.format == PixelFormat::XRGB8888                                      ? 4
+                    : (rgb.format == PixelFormat::RGB24 || rgb.format == PixelFormat::BGR24) ? 3
+                                                                                             : 0;
+    if (bpp == 0 || rgb.empty())
+        return false;
+    float shortest = 1e30f;
+    for (int i = 0; i < 4; ++i) {
+        const Point2f a = quad[i], b = quad[(i + 1) % 4];
+        shortest = std::min(shortest, std::hypot(b.x - a.x, b.y - a.y));
+    }
+    if (!(shortest >= 3.f))
+        return false;
+    const int threshold =
+        std::max(1, static_cast<int>(std::lround(options.saturationGradient * 255.f)));
+    const int normals = std::clamp(options.normalsPerEdge, 2, kMaxNormalsPerEdge);
+    // Never start past the middle of the card: the far edge would be found instead.
+    const float inside = std::min(options.searchInside, 0.35f * shortest);
+    const float outside = options.searchOutside;
+
+    for (int e = 0; e < 4; ++e) {
+        const Point2f a = quad[e], b = quad[(e + 1) % 4];
+        const float ex = b.x - a.x, ey = b.y - a.y;
+        const float len = std::hypot(ex, ey);
+        // Outward normal of a clockwise-on-screen polygon: (ey, -ex) / len.
+        const float nx = ey / len, ny = -ex / len;
+        const bool acrossRows = std::fabs(nx) >= std::fabs(ny);  // near-vertical edge
+        const float along = acrossRows ? std::fabs(nx) : std::fabs(ny);
+        const int dir = (acrossRows ? nx : ny) > 0.f ? 1 : -1;
+        // Along-walk shift of the edge per pixel across the walk (|slope| <= 1).
+        const float slope = acrossRows ? ex / (std::fabs(ey) > 1e-6f ? ey : 1e-6f)
+                                       : ey / (std::fabs(ex) > 1e-6f ? ex : 1e-6f);
+        const int steps =
+            std::min(kMaxWalk, static_cast<int>(std::ceil((inside + outside) / along)) + 1);
+        // Spread the sample lines over the part of the edge inside the frame, so an edge with a
+        // corner outside still gets all of them (its corner is then extrapolated).
+        float t0 = options.endMargin, t1 = 1.f - options.endMargin;
+        clipToFrame(a, ex, ey, static_cast<float>(rgb.width - 1),
+                    static_cast<float>(rgb.height - 1), t0, t1);
+        if (t1 - t0 < 2.f / len) {
+            lineThrough(a, b, out.lines[e]);
+            continue;
+        }
+        Point2f pts[kMaxNormalsPerEdge];
+        int count = 0;
+        for (int k = 0; k < normals; ++k) {
+            const float t =
+                t0 + (t1 - t0) * (static_cast<float>(k) + 0.5f) / static_cast<float>(normals);
+            const float px = a.x + t * ex, py = a.y + t * ey;
+            int x, y;
+            float start;  // coordinate of the walk's first pixel along its direction
+            if (acrossRows) {
+                y = static_cast<int>(std::lround(py)) & ~1;  // even rows: see walk()
+                start = px - static_cast<float>(dir) * inside / along;
+                x = static_cast<int>(std::lround(start));
+                start = static_cast<float>(x);
+            } else {
+                x = static_cast<int>(std::lround(px));
+                start = py - static_cast<float>(dir) * inside / along;
+                y = static_cast<int>(std::lround(start));
+                start = static_cast<float>(y);
+            }
+            if (x < 0 || y < 0 || x >= rgb.width || y >= rgb.height)
+                continue;
+            ++out.normals;
+            const float offset = walk(rgb, bpp, x, y, acrossRows ? dir : 0, acrossRows ? 0 : dir,
+                                      steps, options.band, slope, threshold);
+            if (offset < 0.f)
+                continue;
+            const float pos = start + static_cast<float>(dir) * offset;
+            pts[count++] = acrossRows ? Point2f{pos, static_cast<float>(y)}
+                                      : Point2f{static_cast<float>(x), pos};
+        }
+        out.samples += count;
+        Line2f line;
+        const int in = count >= 3 ? fitLineRansac(pts, count, options.inlierDistance,
+                                                  options.ransacIterations, line)
+                                  : 0;
+        const int needed =
+            std::max(3, static_cast<int>(std::ceil(options.minInlierShare * normals)));
+        if (in >= needed) {
+            // Keep the outward orientation of the input edge.
+            if (line.nx * nx + line.ny * ny < 0.f)
+                line = {-line.nx, -line.ny, -line.c};
+            out.lines[e] = line;
+            out.fitted[e] = true;
+            out.inliers += in;
+            ++out.edgesFitted;
+        } else {
+            lineThrough(a, b, out.lines[e]);
+        }
+    }
+    for (int i = 0; i < 4; ++i) {
+        Point2f p;
+        if (intersectLines(out.lines[(i + 3) % 4], out.lines[i], p) && std::isfinite(p.x) &&
+            std::isfinite(p.y))
+            out.quad[i] = p;
+    }
+    return true;
+}
+
+}  // namespace vision
