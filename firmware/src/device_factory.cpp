@@ -55,7 +55,11 @@ std::unique_ptr<platform::FrameSource> withCard(std::unique_ptr<platform::FrameS
         c.card == SourceConfig::Card::On || (c.card == SourceConfig::Card::Auto && cardByDefault);
     if (!card)
         return scene;
-    return std::make_unique<platform::CardSceneSource>(std::move(scene));
+    // The scene opens with the card held up over the centre, as a person does before `card
+    // train`, so a demo can train and then track it.
+    platform::CardSceneOptions options;
+    options.introFrames = 45;
+    return std::make_unique<platform::CardSceneSource>(std::move(scene), options);
 }
 
 std::unique_ptr<platform::FrameSource> openSource(const SourceConfig& c)

@@ -1,6 +1,6 @@
 #include "platform/card_scene_source.hpp"
 
-#include "noise_hash.hpp"
+#include "platform/card_raster.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -44,7 +44,6 @@ constexpr ChannelLayout layoutOf(vision::PixelFormat f) noexcept
 
 struct CardSceneSource::Pose {
     std::array<double, 8> corners;  ///< x0, y0, ... clockwise from top-left
-    std::array<double, 9> toCard;   ///< homography: pixel -> card coordinates in [-1, 1]^2
     double gradientU;               ///< brightness slope along the card's u (times shading)
     double gradientV;
     double brightness;  ///< brightness at the card centre (1 = nominal colour)
@@ -100,12 +99,30 @@ CardSceneSource::CardSceneSource(std::unique_ptr<FrameSource> inner,
 
 CardSceneSource::Pose CardSceneSource::poseFor(std::uint64_t sequence) const noexcept
 {
-    const double t = static_cast<double>(sequence) / 30.0;
-    const double yaw = kMaxYaw * std::sin(kTwoPi * t / 7.3);
-    const double pitch = kMaxPitch * std::sin(kTwoPi * t / 9.1 + 1.0);
-    const double roll = kMaxRoll * std::sin(kTwoPi * t / 11.7 + 0.5);
-    const double cx = 0.5 * (size_.width - 1) + pathX_ * std::sin(kTwoPi * t / 13.0 + 0.3);
-    const double cy = 0.5 * (size_.height - 1) + pathY_ * std::sin(kTwoPi * t / 8.9 + 1.7);
+    // The training intro holds the card still, then eases into the path (whose time starts
+    // when the intro ends, so the path is the same with or without an intro).
+    const auto intro = static_cast<std::uint64_t>(std::max(0, options_.introFrames));
+    const double t = sequence < intro ? 0.0 : static_cast<double>(sequence - intro) / 30.0;
+    double yaw = kMaxYaw * std::sin(kTwoPi * t / 7.3);
+    double pitch = kMaxPitch * std::sin(kTwoPi * t / 9.1 + 1.0);
+    double roll = kMaxRoll * std::sin(kTwoPi * t / 11.7 + 0.5);
+    double cx = 0.5 * (size_.width - 1) + pathX_ * std::sin(kTwoPi * t / 13.0 + 0.3);
+    double cy = 0.5 * (size_.height - 1) + pathY_ * std::sin(kTwoPi * t / 8.9 + 1.7);
+    double depth = depth_;
+    if (intro > 0 && sequence < 2 * intro) {
+        // Held pose: centred, square to the camera, its half-height 0.34 of the frame height.
+        const double heldDepth = focal_ * halfHeight_ / (0.34 * size_.height);
+        const double x = sequence < intro ? 0.0
+                                          : static_cast<double>(sequence - intro) /
+                                                static_cast<double>(intro);
+        const double w = x * x * (3.0 - 2.0 * x);  // smoothstep: no jerk at either end
+        yaw *= w;
+        pitch *= w;
+        roll *= w;
+        cx = 0.5 * (size_.width - 1) + (cx - 0.5 * (size_.width - 1)) * w;
+        cy = 0.5 * (size_.height - 1) + (cy - 0.5 * (size_.height - 1)) * w;
+        depth = heldDepth + (depth_ - heldDepth) * w;
+    }
 
     // R = Rz(roll) * Ry(yaw) * Rx(pitch); only its first two columns (the card's u and v axes)
     // and the normal matter.
@@ -131,13 +148,13 @@ CardSceneSource::Pose CardSceneSource::poseFor(std::uint64_t sequence) const noe
     const double m[9] = {
         focal_ * r1[0] * hw + cx * r1[2] * hw,
         focal_ * r2[0] * hh + cx * r2[2] * hh,
-        cx * depth_,
+        cx * depth,
         focal_ * r1[1] * hw + cy * r1[2] * hw,
         focal_ * r2[1] * hh + cy * r2[2] * hh,
-        cy * depth_,
+        cy * depth,
         r1[2] * hw,
         r2[2] * hh,
-        depth_,
+        depth,
     };
     Pose pose{};
     const double us[4] = {-1.0, 1.0, 1.0, -1.0};
@@ -149,12 +166,6 @@ CardSceneSource::Pose CardSceneSource::poseFor(std::uint64_t sequence) const noe
         pose.corners[2 * i] = x / z;
         pose.corners[2 * i + 1] = y / z;
     }
-    // Inverse by the adjugate (the scale of a homography does not matter).
-    pose.toCard = {
-        m[4] * m[8] - m[5] * m[7], m[2] * m[7] - m[1] * m[8], m[1] * m[5] - m[2] * m[4],
-        m[5] * m[6] - m[3] * m[8], m[0] * m[8] - m[2] * m[6], m[2] * m[3] - m[0] * m[5],
-        m[3] * m[7] - m[4] * m[6], m[1] * m[6] - m[0] * m[7], m[0] * m[4] - m[1] * m[3],
-    };
 
     // Lighting: a gradient turning slowly across the card, and a little darker when tilted away.
     // |0.6/sqrt2 * (cos u + sin v)| <= 0.6 and the tilt term is in [-0.4, 0], so the brightness
@@ -167,10 +178,10 @@ CardSceneSource::Pose CardSceneSource::poseFor(std::uint64_t sequence) const noe
     return pose;
 }
 
-std::array<Point2f, 4> CardSceneSource::cornersFor(std::uint64_t sequence) const noexcept
+vision::Quad CardSceneSource::cornersFor(std::uint64_t sequence) const noexcept
 {
     const Pose pose = poseFor(sequence);
-    std::array<Point2f, 4> out;
+    vision::Quad out;
     for (int i = 0; i < 4; ++i)
         out[i] = {static_cast<float>(pose.corners[2 * i]),
                   static_cast<float>(pose.corners[2 * i + 1])};
@@ -181,84 +192,21 @@ bool CardSceneSource::drawCard(std::uint64_t sequence, vision::ImageView image) 
 {
     if (image.data == nullptr || image.size() != size_ || image.format != format_)
         return false;
-    const ChannelLayout layout = layoutOf(format_);
     const Pose pose = poseFor(sequence);
-
-    // Edge functions: signed distance in pixels, positive inside (the corners are clockwise on
-    // screen, y down).
-    double nx[4], ny[4], c0[4];
-    double minX = 1e9, maxX = -1e9, minY = 1e9, maxY = -1e9;
-    for (int i = 0; i < 4; ++i) {
-        const double px = pose.corners[2 * i], py = pose.corners[2 * i + 1];
-        const double qx = pose.corners[(2 * i + 2) % 8], qy = pose.corners[(2 * i + 3) % 8];
-        const double len = std::max(std::hypot(qx - px, qy - py), 1e-9);
-        nx[i] = -(qy - py) / len;
-        ny[i] = (qx - px) / len;
-        c0[i] = -(nx[i] * px + ny[i] * py);
-        minX = std::min(minX, px);
-        maxX = std::max(maxX, px);
-        minY = std::min(minY, py);
-        maxY = std::max(maxY, py);
-    }
-    const int x0 = std::max(0, static_cast<int>(std::floor(minX)) - 1);
-    const int x1 = std::min(size_.width - 1, static_cast<int>(std::ceil(maxX)) + 1);
-    const int y0 = std::max(0, static_cast<int>(std::floor(minY)) - 1);
-    const int y1 = std::min(size_.height - 1, static_cast<int>(std::ceil(maxY)) + 1);
-
-    // Subsample offsets of a 4x4 grid within the pixel; all samples lie within 0.54 px of the
-    // centre, so pixels farther than that from every edge need no sampling.
-    constexpr double kOffsets[4] = {-0.375, -0.125, 0.125, 0.375};
-    constexpr double kSure = 0.54;
-    const double base[3] = {static_cast<double>(options_.red), static_cast<double>(options_.green),
-                            static_cast<double>(options_.blue)};
-    const int noiseSpan = 2 * std::max(0, options_.noise) + 1;
-    const auto& hinv = pose.toCard;
-    const auto seq32 = static_cast<std::uint32_t>(sequence);
-
-    for (int y = y0; y <= y1; ++y) {
-        std::uint8_t* p = image.row(y) + static_cast<std::ptrdiff_t>(x0) * layout.bytesPerPixel;
-        for (int x = x0; x <= x1; ++x, p += layout.bytesPerPixel) {
-            double d[4];
-            double dmin = 1e9;
-            for (int i = 0; i < 4; ++i) {
-                d[i] = nx[i] * x + ny[i] * y + c0[i];
-                dmin = std::min(dmin, d[i]);
-            }
-            if (dmin <= -kSure)
-                continue;
-            int alpha = 256;
-            if (dmin < kSure) {
-                int inside = 0;
-                for (const double oy : kOffsets)
-                    for (const double ox : kOffsets) {
-                        bool in = true;
-                        for (int i = 0; i < 4 && in; ++i)
-                            in = d[i] + nx[i] * ox + ny[i] * oy >= 0.0;
-                        inside += in;
-                    }
-                if (inside == 0)
-                    continue;
-                alpha = inside * 16;
-            }
-            // Card coordinates of the pixel for its shading.
-            const double w = hinv[6] * x + hinv[7] * y + hinv[8];
-            const double u = std::clamp((hinv[0] * x + hinv[1] * y + hinv[2]) / w, -1.0, 1.0);
-            const double v = std::clamp((hinv[3] * x + hinv[4] * y + hinv[5]) / w, -1.0, 1.0);
-            const double light = pose.brightness + pose.gradientU * u + pose.gradientV * v;
-            const int noise = static_cast<int>(noiseHash(static_cast<std::uint32_t>(x),
-                                                         static_cast<std::uint32_t>(y), seq32) %
-                                               static_cast<std::uint32_t>(noiseSpan)) -
-                              noiseSpan / 2;
-            const int offsets[3] = {layout.r, layout.g, layout.b};
-            for (int c = 0; c < 3; ++c) {
-                const int card =
-                    std::clamp(static_cast<int>(base[c] * light + 0.5) + noise, 0, 255);
-                std::uint8_t& dst = p[offsets[c]];
-                dst = static_cast<std::uint8_t>(dst + (((card - dst) * alpha) >> 8));
-            }
-        }
-    }
-    return true;
+    CardPaint paint;
+    paint.red = options_.red;
+    paint.green = options_.green;
+    paint.blue = options_.blue;
+    paint.brightness = pose.brightness;
+    paint.gradientU = pose.gradientU;
+    paint.gradientV = pose.gradientV;
+    paint.noise = options_.noise;
+    paint.noiseSeed = static_cast<std::uint32_t>(sequence);
+    vision::Quad quad;
+    for (int i = 0; i < 4; ++i)
+        quad[i] = {static_cast<float>(pose.corners[2 * i]),
+                   static_cast<float>(pose.corners[2 * i + 1])};
+    return drawCardQuad(image, quad, paint);
 }
 
 SourceStatus CardSceneSource::next(vision::Frame& frame) noexcept

@@ -3,6 +3,7 @@
 #include "platform/card_scene_source.hpp"
 
 #include "alloc_counter.hpp"
+#include "platform/card_raster.hpp"
 #include "platform/synthetic_source.hpp"
 
 #include <gtest/gtest.h>
@@ -20,8 +21,8 @@ namespace {
 
 using platform::CardSceneOptions;
 using platform::CardSceneSource;
-using platform::Point2f;
 using platform::SourceStatus;
+using vision::Point2f;
 
 /// A known inner source: a byte pattern that depends on position and sequence.
 class PatternSource final : public platform::FrameSource {
@@ -105,6 +106,41 @@ TEST(CardSceneSource, CornersAreClockwiseConvexAndInsideTheFrame)
             for (int i = 1; i < 4; ++i)
                 EXPECT_LT(c[0].x + c[0].y, c[i].x + c[i].y) << "seq " << seq;
         }
+    }
+}
+
+TEST(CardSceneSource, TrainingIntroHoldsTheCardOverTheCentreThenJoinsThePath)
+{
+    for (const vision::Size size : {vision::Size{640, 480}, vision::Size{720, 528}}) {
+        CardSceneOptions options;
+        options.introFrames = 30;
+        CardSceneSource held(
+            std::make_unique<PatternSource>(size.width, size.height, vision::PixelFormat::RGB24),
+            options);
+        CardSceneSource plain(
+            std::make_unique<PatternSource>(size.width, size.height, vision::PixelFormat::RGB24));
+        // Held still during the intro, covering the central half of the view (what `card train`
+        // learns from with the default train_fraction 0.5), with a margin of a few pixels.
+        const auto c0 = held.cornersFor(0);
+        EXPECT_EQ(c0, held.cornersFor(29));
+        const double x0 = 0.25 * size.width, x1 = 0.75 * size.width;
+        const double y0 = 0.25 * size.height, y1 = 0.75 * size.height;
+        for (const auto& [x, y] : {std::pair{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}})
+            EXPECT_GT(insideDistance(c0, x, y), 3.0) << x << "," << y;
+        // Easing into the path: always inside the frame and clockwise.
+        for (std::uint64_t seq = 30; seq < 60; ++seq) {
+            const auto c = held.cornersFor(seq);
+            for (int i = 0; i < 4; ++i) {
+                EXPECT_GT(cross(c[i], c[(i + 1) % 4], c[(i + 2) % 4]), 0.0) << "seq " << seq;
+                EXPECT_GE(c[i].x, 0.0f);
+                EXPECT_GE(c[i].y, 0.0f);
+                EXPECT_LE(c[i].x, size.width - 1.0f);
+                EXPECT_LE(c[i].y, size.height - 1.0f);
+            }
+        }
+        // Then exactly the path of a card without intro, shifted by the intro's length.
+        for (std::uint64_t seq = 60; seq < 400; seq += 13)
+            EXPECT_EQ(held.cornersFor(seq), plain.cornersFor(seq - 30)) << "seq " << seq;
     }
 }
 
@@ -305,6 +341,64 @@ TEST(CardSceneSource, NextDoesNotAllocate)
         ASSERT_EQ(card.next(frame), SourceStatus::Ok);
     EXPECT_EQ(scope.counts().cxxNew, 0);
     EXPECT_EQ(scope.counts().ownMalloc, 0);
+}
+
+// drawCardQuad: the one card renderer, shared with cardgen.
+
+vision::Quad rectQuad(float l, float t, float r, float b)
+{
+    return {Point2f{l, t}, Point2f{r, t}, Point2f{r, b}, Point2f{l, b}};
+}
+
+TEST(CardRaster, EdgeCoverageIsSubpixel)
+{
+    // Vertical edges at x = 20.25 and x = 60.25: the border pixels are 25 % and 75 % card.
+    vision::ImageBuffer img(80, 40, vision::PixelFormat::RGB24);
+    std::memset(img.view().data, 0, img.bytes());
+    platform::CardPaint paint;
+    paint.red = paint.green = paint.blue = 200;
+    ASSERT_TRUE(platform::drawCardQuad(img.view(), rectQuad(20.25f, 5.f, 60.25f, 35.f), paint));
+    const std::uint8_t* row = img.view().row(20);
+    EXPECT_EQ(row[19 * 3], 0);
+    EXPECT_NEAR(row[20 * 3], 50, 4);
+    EXPECT_EQ(row[21 * 3], 200);
+    EXPECT_EQ(row[59 * 3], 200);
+    EXPECT_NEAR(row[60 * 3], 150, 4);
+    EXPECT_EQ(row[61 * 3], 0);
+}
+
+TEST(CardRaster, HomographyMapsTheUnitSquareOntoTheCorners)
+{
+    const vision::Quad q = {Point2f{10, 12}, Point2f{90, 20}, Point2f{80, 70}, Point2f{15, 60}};
+    double m[9];
+    platform::cardToImageHomography(q, m);
+    const double us[4] = {-1, 1, 1, -1}, vs[4] = {-1, -1, 1, 1};
+    for (int i = 0; i < 4; ++i) {
+        const double w = m[6] * us[i] + m[7] * vs[i] + m[8];
+        EXPECT_NEAR((m[0] * us[i] + m[1] * vs[i] + m[2]) / w, q[i].x, 1e-9);
+        EXPECT_NEAR((m[3] * us[i] + m[4] * vs[i] + m[5]) / w, q[i].y, 1e-9);
+    }
+}
+
+TEST(CardRaster, ClipsQuadsPartlyOrWhollyOutsideAndRejectsOtherFormats)
+{
+    vision::ImageBuffer img(40, 30, vision::PixelFormat::XRGB8888);
+    std::memset(img.view().data, 0, img.bytes());
+    platform::CardPaint paint;
+    // Wholly outside: nothing drawn.
+    ASSERT_TRUE(platform::drawCardQuad(img.view(), rectQuad(-100, -100, -50, -50), paint));
+    for (std::size_t i = 0; i < img.bytes(); ++i)
+        ASSERT_EQ(img.view().data[i], 0);
+    // Covering the whole image with margin: every pixel is the card (XRGB: B, G, R, X in memory).
+    ASSERT_TRUE(platform::drawCardQuad(img.view(), rectQuad(-10, -10, 50, 40), paint));
+    for (int y = 0; y < 30; ++y)
+        for (int x = 0; x < 40; ++x) {
+            ASSERT_EQ(img.view().row(y)[4 * x + 2], paint.red);
+            ASSERT_EQ(img.view().row(y)[4 * x + 1], paint.green);
+            ASSERT_EQ(img.view().row(y)[4 * x + 0], paint.blue);
+        }
+    vision::ImageBuffer gray(40, 30, vision::PixelFormat::Gray8);
+    EXPECT_FALSE(platform::drawCardQuad(gray.view(), rectQuad(0, 0, 10, 10), paint));
 }
 
 }  // namespace

@@ -2,20 +2,14 @@
 // CardSceneSource: composites a synthetic coloured card moving over another source's frames.
 
 #include "platform/frame_source.hpp"
+#include "vision/geometry.hpp"
 #include "vision/image.hpp"
 
-#include <array>
 #include <cstdint>
 #include <memory>
 #include <string>
 
 namespace platform {
-
-/// A point in image pixels. Pixel (x, y) has its centre at (x, y) and covers [x-0.5, x+0.5).
-struct Point2f {
-    float x = 0.0f;
-    float y = 0.0f;
-};
 
 /// Appearance and size of the synthetic card.
 struct CardSceneOptions {
@@ -28,6 +22,10 @@ struct CardSceneOptions {
     /// Brightness of the card varies within 1 +- shading (a gradient across it and its tilt).
     double shading = 0.08;
     int noise = 4;  ///< per-pixel noise, +- grey levels, deterministic
+    /// Frames at the start where the card is held up for training: centred, facing the camera and
+    /// large enough to cover the central half of the view (what a person does before `card
+    /// train`); it then eases into its path over the next `introFrames` frames. 0 = no intro.
+    int introFrames = 0;
 
     /// Green construction paper (the default).
     static constexpr CardSceneOptions greenCard() noexcept { return {}; }
@@ -48,8 +46,8 @@ struct CardSceneOptions {
 /// The card is an A5-proportioned rectangle seen in perspective: it moves along a smooth Lissajous
 /// path and tilts and turns gently in 3D, a pure function of the frame's sequence number (scene
 /// time 1/30 s per frame). Its size and path are chosen at construction so the whole card always
-/// stays inside the frame. Edges are anti-aliased by 4x4 subpixel sampling; the surface has slight
-/// brightness shading and mild noise so it is not perfectly flat, and no highlighted border.
+/// stays inside the frame. It is drawn by drawCardQuad() (card_raster.hpp): anti-aliased edges,
+/// slight brightness shading and mild noise so it is not perfectly flat, no highlighted border.
 ///
 /// Frames are copied into a buffer of this source (same size and format as the inner one: RGB24,
 /// BGR24 or XRGB8888), so the inner source's frame is never modified. EndOfStream and Lost of the
@@ -70,9 +68,9 @@ public:
 
     /// Corners of the card in the last delivered frame (of sequence 0 before the first), clockwise
     /// on screen from the card's top-left corner: top-left, top-right, bottom-right, bottom-left.
-    std::array<Point2f, 4> corners() const noexcept { return corners_; }
+    vision::Quad corners() const noexcept { return corners_; }
     /// Corners of the card in the frame with this sequence number.
-    std::array<Point2f, 4> cornersFor(std::uint64_t sequence) const noexcept;
+    vision::Quad cornersFor(std::uint64_t sequence) const noexcept;
     /// Draws the card of frame `sequence` into `image` (this source's size and format); false when
     /// the image does not fit. next() uses it on its copy of the inner frame.
     bool drawCard(std::uint64_t sequence, vision::ImageView image) const noexcept;
@@ -90,7 +88,7 @@ private:
     vision::PixelFormat format_;
     vision::ImageBuffer buffer_;
     std::string description_;
-    std::array<Point2f, 4> corners_{};
+    vision::Quad corners_{};
     char lastError_[160] = {};
 
     // Geometry fixed at construction (pixels).
