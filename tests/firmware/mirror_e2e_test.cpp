@@ -10,6 +10,7 @@
 #include <array>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
 #include <random>
@@ -24,12 +25,8 @@ struct RunResult {
     std::string output;  // stdout and stderr together
 };
 
-RunResult runMirror(const std::string& args)
+RunResult runCommand(const std::string& command)
 {
-    // Tests keep what the mirror learns in the build tree, never in /var/lib/mirror.
-    const std::string command = testing_support::binaryDir() + "/bin/mirror --set 'state.dir=\"" +
-                                testing_support::binaryDir() + "/test-output/e2e_state\"' " + args +
-                                " </dev/null 2>&1";
     RunResult result;
     FILE* pipe = ::popen(command.c_str(), "r");
     if (!pipe)
@@ -41,6 +38,20 @@ RunResult runMirror(const std::string& args)
     const int status = ::pclose(pipe);
     result.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
     return result;
+}
+
+/// Runs the mirror with `args`; `console` is typed on its standard input (nothing by default).
+RunResult runMirror(const std::string& args, const std::string& console = "")
+{
+    // Tests keep what the mirror learns in the build tree, never in /var/lib/mirror.
+    std::string input = "/dev/null";
+    if (!console.empty()) {
+        input = testing_support::binaryDir() + "/test-output/e2e_console.txt";
+        std::ofstream(input) << console << '\n';
+    }
+    return runCommand(testing_support::binaryDir() + "/bin/mirror --set 'state.dir=\"" +
+                      testing_support::binaryDir() + "/test-output/e2e_state\"' " + args + " <" +
+                      input + " 2>&1");
 }
 
 /// Distinct, left-right asymmetric frames: per-pixel noise over a horizontal ramp.
@@ -95,6 +106,66 @@ TEST(MirrorEndToEnd, HeadlessOutputIsTheInputMirroredLeftRight)
         EXPECT_GT(cv::mean(diff)[0], 10.0);
     }
     EXPECT_TRUE(fs::exists(out + "/summary.log"));
+}
+
+TEST(MirrorEndToEnd, TrainedCardShowsThePictureOnTheCard)
+{
+    // A cardgen sequence: frame 0 is the card filling the view, as for training.
+    const std::string in = testing_support::freshOutputDir("e2e_card_in");
+    const std::string out = testing_support::freshOutputDir("e2e_card_out");
+    const RunResult gen = runCommand(testing_support::binaryDir() +
+                                     "/bin/cardgen --scenario perspective --frames 40 --size "
+                                     "320x240 --out " +
+                                     in + " 2>&1");
+    ASSERT_EQ(gen.exitCode, 0) << gen.output;
+
+    const RunResult r = runMirror(
+        "--source file:" + in + " --display headless:" + out +
+            " --frames 40 --set display.width=320 --set display.height=240 --set display.hud=false"
+            " --set display.snapshot_every=39 --set 'source.rate=\"max\"' --set "
+            "source.loop=false",
+        "card train");
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_NE(r.output.find("card: trained"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("-> tracking"), std::string::npos) << r.output;
+
+    // Frame 39: inside the card the picture replaced the card colour; far outside, the video.
+    std::ifstream truth(in + "/truth.csv");
+    std::string line, last;
+    while (std::getline(truth, line))
+        if (line.rfind("39,", 0) == 0)
+            last = line;
+    ASSERT_FALSE(last.empty());
+    float c[8];
+    ASSERT_EQ(std::sscanf(last.c_str(), "39,%f,%f,%f,%f,%f,%f,%f,%f", &c[0], &c[1], &c[2], &c[3],
+                          &c[4], &c[5], &c[6], &c[7]),
+              8);
+    const int cx = static_cast<int>((c[0] + c[2] + c[4] + c[6]) / 4);
+    const int cy = static_cast<int>((c[1] + c[3] + c[5] + c[7]) / 4);
+    const cv::Mat input = cv::imread(in + "/frame_00039.png", cv::IMREAD_COLOR);
+    const cv::Mat shot = cv::imread(out + "/snapshot-000039.png", cv::IMREAD_COLOR);
+    ASSERT_FALSE(input.empty());
+    ASSERT_FALSE(shot.empty()) << r.output;
+    const cv::Vec3b card = input.at<cv::Vec3b>(cy, cx);
+    int changed = 0;
+    for (int dy = -4; dy <= 4; dy += 4)
+        for (int dx = -4; dx <= 4; dx += 4) {
+            const cv::Vec3b p = shot.at<cv::Vec3b>(cy + dy, 319 - (cx + dx));  // mirrored
+            changed += cv::norm(cv::Vec3i(p) - cv::Vec3i(card)) > 40.0;
+        }
+    EXPECT_GE(changed, 7) << "the card's centre still shows the card colour, not the picture";
+}
+
+TEST(MirrorEndToEnd, UnreadableCardPictureIsOneErrorAndTheMirrorRuns)
+{
+    const RunResult r = runMirror("--source synthetic --display headless:" +
+                                  testing_support::freshOutputDir("e2e_nopicture") +
+                                  " --frames 5 --set 'card.picture=\"/nonexistent/picture.png\"'");
+    EXPECT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_NE(r.output.find("card picture /nonexistent/picture.png: no such file; drawing the "
+                            "card's outline instead"),
+              std::string::npos)
+        << r.output;
 }
 
 TEST(MirrorEndToEnd, MissingSourceFileFailsFastWithExitCode3)
