@@ -7,29 +7,6 @@
 
 namespace platform {
 
-namespace {
-
-struct ChannelLayout {
-    int bytesPerPixel;
-    int r, g, b;  // byte offsets within a pixel
-};
-
-constexpr ChannelLayout layoutOf(vision::PixelFormat f) noexcept
-{
-    switch (f) {
-        case vision::PixelFormat::RGB24:
-            return {3, 0, 1, 2};
-        case vision::PixelFormat::BGR24:
-            return {3, 2, 1, 0};
-        case vision::PixelFormat::XRGB8888:
-            return {4, 2, 1, 0};
-        default:
-            return {0, 0, 0, 0};
-    }
-}
-
-}  // namespace
-
 void cardToImageHomography(const vision::Quad& quad, double m[9]) noexcept
 {
     // Heckbert's unit square -> quad mapping ((0,0), (1,0), (1,1), (0,1) -> corners 0..3), then
@@ -53,7 +30,7 @@ void cardToImageHomography(const vision::Quad& quad, double m[9]) noexcept
 bool drawCardQuad(vision::ImageView image, const vision::Quad& quad,
                   const CardPaint& paint) noexcept
 {
-    const ChannelLayout layout = layoutOf(image.format);
+    const vision::RgbLayout layout = vision::rgbLayout(image.format);
     if (image.empty() || layout.bytesPerPixel == 0)
         return false;
 

@@ -21,25 +21,6 @@ constexpr double kMaxPitch = 0.30;
 constexpr double kMaxRoll = 0.25;
 constexpr double kMarginPx = 2.0;  // the card's corners keep this far from the frame's border
 
-struct ChannelLayout {
-    int bytesPerPixel;
-    int r, g, b;  // byte offsets within a pixel
-};
-
-constexpr ChannelLayout layoutOf(vision::PixelFormat f) noexcept
-{
-    switch (f) {
-        case vision::PixelFormat::RGB24:
-            return {3, 0, 1, 2};
-        case vision::PixelFormat::BGR24:
-            return {3, 2, 1, 0};
-        case vision::PixelFormat::XRGB8888:
-            return {4, 2, 1, 0};
-        default:
-            return {0, 0, 0, 0};
-    }
-}
-
 }  // namespace
 
 struct CardSceneSource::Pose {
@@ -57,7 +38,7 @@ CardSceneSource::CardSceneSource(std::unique_ptr<FrameSource> inner,
         throw std::runtime_error("card: no inner source to draw the card over");
     size_ = inner_->size();
     format_ = inner_->format();
-    if (layoutOf(format_).bytesPerPixel == 0)
+    if (vision::rgbLayout(format_).bytesPerPixel == 0)
         throw std::runtime_error(std::string("card: inner source format ") +
                                  vision::pixelFormatName(format_) +
                                  " unsupported (needs RGB24, BGR24 or XRGB8888)");
@@ -112,9 +93,9 @@ CardSceneSource::Pose CardSceneSource::poseFor(std::uint64_t sequence) const noe
     if (intro > 0 && sequence < 2 * intro) {
         // Held pose: centred, square to the camera, its half-height 0.34 of the frame height.
         const double heldDepth = focal_ * halfHeight_ / (0.34 * size_.height);
-        const double x = sequence < intro ? 0.0
-                                          : static_cast<double>(sequence - intro) /
-                                                static_cast<double>(intro);
+        const double x = sequence < intro
+                             ? 0.0
+                             : static_cast<double>(sequence - intro) / static_cast<double>(intro);
         const double w = x * x * (3.0 - 2.0 * x);  // smoothstep: no jerk at either end
         yaw *= w;
         pitch *= w;
@@ -225,7 +206,7 @@ SourceStatus CardSceneSource::next(vision::Frame& frame) noexcept
     lastError_[0] = '\0';
     const vision::ImageView out = buffer_.view();
     const std::size_t rowBytes = static_cast<std::size_t>(size_.width) *
-                                 static_cast<std::size_t>(layoutOf(format_).bytesPerPixel);
+                                 static_cast<std::size_t>(vision::rgbLayout(format_).bytesPerPixel);
     for (int y = 0; y < size_.height; ++y)
         std::memcpy(out.row(y), in.image.row(y), rowBytes);
     drawCard(in.sequence, out);

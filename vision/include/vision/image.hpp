@@ -48,6 +48,27 @@ constexpr std::size_t imageBytes(PixelFormat f, int height, int stride) noexcept
     return f == PixelFormat::NV12 ? plane + plane / 2 : plane;
 }
 
+/// Byte offsets of R, G and B within one pixel of a packed RGB-like format (RGB24, BGR24,
+/// XRGB8888). bytesPerPixel is 0 for the other formats.
+struct RgbLayout {
+    int bytesPerPixel;
+    int r, g, b;
+};
+
+constexpr RgbLayout rgbLayout(PixelFormat f) noexcept
+{
+    switch (f) {
+        case PixelFormat::RGB24:
+            return {3, 0, 1, 2};
+        case PixelFormat::BGR24:
+            return {3, 2, 1, 0};
+        case PixelFormat::XRGB8888:
+            return {4, 2, 1, 0};
+        default:
+            return {0, 0, 0, 0};
+    }
+}
+
 const char* pixelFormatName(PixelFormat f) noexcept;
 
 struct Size {
