@@ -264,11 +264,8 @@ void FrameLoop::trainCard() noexcept
 {
     // Step 1 of 4.2: learn the colour from the centre of this frame (the card held there).
     cardTrainPending_ = false;
-    const vision::Size size = source_->size();
     const double f = config_.card.trainFraction;
-    const int w = std::max(1, static_cast<int>(size.width * f));
-    const int h = std::max(1, static_cast<int>(size.height * f));
-    const vision::Rect region{(size.width - w) / 2, (size.height - h) / 2, w, h};
+    const vision::Rect region = vision::centralRegion(source_->size(), static_cast<float>(f));
     char line[640];
     vision::CardTracker& tracker = cardStage_->tracker();
     if (!tracker.train(state_.frame.image, state_.chroma, region)) {
