@@ -1,0 +1,79 @@
+#pragma once
+// Initial roll of a detected face from the bilateral symmetry of its corner points (METHOD.md §4,
+// dissertation 5.2.2): rotate the points about the box centre by each candidate angle, reflect
+// them across the vertical axis through the centre, and score how far each reflected point lands
+// from its nearest original point. The most symmetric angle is the roll. Plus the least-squares
+// line-fit baseline the dissertation compares with (5.2.3). Points only: the corners come from
+// whichever detector the caller runs. No allocation, no exceptions.
+
+#include "vision/geometry.hpp"
+
+#include <span>
+
+namespace vision {
+
+/// Roll of a face in degrees. Positive roll turns the face's upright axes from +x towards +y, i.e.
+/// clockwise on screen (y down), the same sense as the tracker's th = atan2(a2, a1) (METHOD §3):
+/// an upright point set rotated about the centre by `rollDegrees` gives the observed points.
+struct RollEstimate {
+    float rollDegrees = 0.f;
+    /// 0 (no information: too few points, or every angle scores alike) .. 1 (one clear minimum).
+    float confidence = 0.f;
+    /// The best symmetry score as a fraction of the box size (0 = perfectly symmetric).
+    float symmetryDistance = 0.f;
+    /// Points actually used (at most kMaxRollPoints).
+    int points = 0;
+};
+
+/// Points beyond this are ignored (the caller samples ~20-60 corners per face).
+inline constexpr int kMaxRollPoints = 128;
+
+/// Knobs of estimateRollBySymmetry; the defaults are the ones measured on the IMM faces
+/// (tests/peer/roll_landmarks_peer_test.cpp).
+struct RollEstimatorOptions {
+    /// Candidate angles: whole-step search in [minDegrees, maxDegrees] (the detector finds faces
+    /// up to ~20 degrees from vertical, so +-30 covers it).
+    float minDegrees = -30.f;
+    float maxDegrees = 30.f;
+    float stepDegrees = 1.f;
+    /// Sub-step refinement by golden-section search on [best - step, best + step] down to this
+    /// interval; 0 disables it (whole steps only, as in the dissertation).
+    float refineToleranceDegrees = 0.02f;
+    /// Fraction of the largest nearest-point distances dropped before averaging. Hair, collar and
+    /// background corners have no mirror partner; with the plain mean (0, the dissertation's) a
+    /// few of them decide the angle, trimmed they are not counted.
+    float trimFraction = 0.1f;
+    /// Each nearest distance is capped at this fraction of the box size before averaging (a
+    /// truncated mean), so an unmatched point costs a fixed penalty however far it lands.
+    /// Trimming, cap and axis offsets together halve the mean error on the rotated IMM faces
+    /// (about 5 -> 2.5 degrees, see the peer test). Weighting points by their distance from the
+    /// centre (the lever arm) was tried and made it worse (about 2.3 -> 3.1 degrees): the outer
+    /// points are the ones most often hair and background.
+    float capFraction = 0.06f;
+    /// The box centre need not lie on the face's axis (detectors are off by a few pixels, more for
+    /// rotated faces). The axis may also be shifted sideways by up to this fraction of the box
+    /// size, searched in `axisOffsetSteps` steps each side; 0 = axis through the centre only.
+    /// With boxes 5% off centre this matters most (about 6.6 -> 2.3 degrees mean error).
+    float maxAxisOffsetFraction = 0.06f;
+    int axisOffsetSteps = 3;
+};
+
+/// Symmetry score of `points` about the axis through `centre + offset * (cos a, sin a)` at angle
+/// `rollDegrees` from vertical: the (trimmed, capped) mean distance from each reflected point to
+/// its nearest original point, in pixels. `offset` is across the axis, in pixels; `cap` <= 0 is
+/// no cap.
+float symmetryDistance(std::span<const Point2f> points, Point2f centre, float rollDegrees,
+                       float offset, float trimFraction, float cap) noexcept;
+
+/// Roll of the face whose corners are `points`, detected in a box centred at `centre` with side
+/// `boxSize` (pixels; scales the trimming cap and axis offsets). Fewer than 3 points, or a
+/// non-positive box size, give confidence 0 and roll 0.
+RollEstimate estimateRollBySymmetry(std::span<const Point2f> points, Point2f centre, float boxSize,
+                                    const RollEstimatorOptions& options = {}) noexcept;
+
+/// The dissertation's baseline (5.2.3): the least-squares (orthogonal) line through the points,
+/// its slope offset by a multiple of 90 degrees into [-45, 45). Confidence is the elongation of
+/// the point cloud, (l1 - l2) / (l1 + l2) of its scatter matrix; fewer than 2 points give 0.
+RollEstimate estimateRollByLineFit(std::span<const Point2f> points) noexcept;
+
+}  // namespace vision
