@@ -1,0 +1,358 @@
+// FaceDetector on synthetic images: integral tables against brute force, window decisions of
+// the fixed-point evaluator against a float reference written like OpenCV's, and the scan modes
+// (full, masked with exclusions, first hit) without heap allocation per frame.
+#include "vision/face_detector.hpp"
+
+#include "alloc_counter.hpp"
+#include "vision/haar_cascade.hpp"
+#include "vision/integral_image.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <filesystem>
+#include <random>
+#include <stdexcept>
+#include <vector>
+
+using namespace vision;
+
+namespace {
+
+const char* const kDefault = "/usr/share/opencv4/haarcascades/haarcascade_frontalface_default.xml";
+const char* const kAlt2 = "/usr/share/opencv4/haarcascades/haarcascade_frontalface_alt2.xml";
+
+// One stage, one stump on a 6x6 window: left half minus right half (whole -1, left 2), value
+// (normalised) below 0.05 -> leaf -1, else +1; the stage needs 0.5. So windows with a bright left
+// half pass.
+const char* const kEdgeCascade = R"(<?xml version="1.0"?>
+<opencv_storage>
+<cascade type_id="opencv-cascade-classifier"><stageType>BOOST</stageType>
+  <featureType>HAAR</featureType>
+  <height>6</height>
+  <width>6</width>
+  <stages>
+    <_>
+      <maxWeakCount>1</maxWeakCount>
+      <stageThreshold>0.5</stageThreshold>
+      <weakClassifiers>
+        <_>
+          <internalNodes>0 -1 0 0.05</internalNodes>
+          <leafValues>-1. 1.</leafValues></_></weakClassifiers></_></stages>
+  <features>
+    <_>
+      <rects>
+        <_>0 0 6 6 -1.</_>
+        <_>0 0 3 6 2.</_></rects></_></features></cascade>
+</opencv_storage>
+)";
+
+struct Gray {
+    int width, height;
+    std::vector<std::uint8_t> pixels;
+    Gray(int w, int h, std::uint8_t v = 0)
+        : width(w), height(h), pixels(static_cast<std::size_t>(w * h), v)
+    {
+    }
+    std::uint8_t& at(int x, int y) { return pixels[static_cast<std::size_t>(y * width + x)]; }
+    std::uint8_t at(int x, int y) const { return pixels[static_cast<std::size_t>(y * width + x)]; }
+    ConstImageView view() const
+    {
+        return {pixels.data(), width, height, width, PixelFormat::Gray8};
+    }
+};
+
+// A blocky random image: textures rich enough that windows go past the first stages.
+Gray randomImage(int w, int h, unsigned seed)
+{
+    Gray g(w, h);
+    std::mt19937 rng(seed);
+    std::uniform_int_distribution<int> v(0, 255);
+    std::vector<int> blocks(static_cast<std::size_t>((w / 4 + 1) * (h / 4 + 1)));
+    for (int& b : blocks)
+        b = v(rng);
+    for (int y = 0; y < h; ++y) {
+        for (int x = 0; x < w; ++x) {
+            const int b = blocks[static_cast<std::size_t>((y / 4) * (w / 4 + 1) + x / 4)];
+            g.at(x, y) = static_cast<std::uint8_t>(std::clamp(b + v(rng) / 8 - 16, 0, 255));
+        }
+    }
+    return g;
+}
+
+// OpenCV's evaluation (cascadedetect.cpp) in float and double, on brute-force integrals.
+int referenceEvaluate(const HaarCascade& c, const Gray& g, int x0, int y0)
+{
+    auto rectSum = [&](int x, int y, int w, int h) {
+        long long s = 0;
+        for (int yy = y0 + y; yy < y0 + y + h; ++yy) {
+            for (int xx = x0 + x; xx < x0 + x + w; ++xx)
+                s += g.at(xx, yy);
+        }
+        return s;
+    };
+    auto rectSq = [&](int x, int y, int w, int h) {
+        long long s = 0;
+        for (int yy = y0 + y; yy < y0 + y + h; ++yy) {
+            for (int xx = x0 + x; xx < x0 + x + w; ++xx) {
+                const long long v = g.at(xx, yy);
+                s += v * v;
+            }
+        }
+        return s;
+    };
+    const int nw = c.windowWidth - 2;
+    const int nh = c.windowHeight - 2;
+    const double area = double(nw) * nh;
+    const double nf = area * double(rectSq(1, 1, nw, nh)) -
+                      double(rectSum(1, 1, nw, nh)) * double(rectSum(1, 1, nw, nh));
+    if (!(nf > 0))
+        return -1;
+    const float vnf = float(1.0 / std::sqrt(nf));
+    if (!(area * vnf < 0.1))
+        return -1;
+    auto feature = [&](int fi) {
+        const HaarFeature& f = c.features[static_cast<std::size_t>(fi)];
+        float r = 0.0f;
+        for (int i = 0; i < f.rectCount; ++i) {
+            const HaarRect& hr = f.rects[static_cast<std::size_t>(i)];
+            r += hr.weight * float(rectSum(hr.x, hr.y, hr.width, hr.height));
+        }
+        return r * vnf;
+    };
+    for (std::size_t si = 0; si < c.stages.size(); ++si) {
+        const HaarStage& st = c.stages[si];
+        double sum = 0;
+        for (int i = 0; i < st.weakCount; ++i) {
+            const HaarWeakClassifier& w = c.weak[static_cast<std::size_t>(st.firstWeak + i)];
+            int idx = 0;
+            do {
+                const HaarNode& n = c.nodes[static_cast<std::size_t>(w.firstNode + idx)];
+                idx = double(feature(n.featureIndex)) < n.threshold ? n.left : n.right;
+            } while (idx > 0);
+            sum += c.leaves[static_cast<std::size_t>(w.firstLeaf - idx)];
+        }
+        if (sum < st.threshold - 1e-5f)
+            return -static_cast<int>(si);
+    }
+    return 1;
+}
+
+FaceDetectorOptions smallOptions(int minNeighbors)
+{
+    FaceDetectorOptions o;
+    o.maxFrameSize = {64, 48};
+    o.scaleFactor = 1.25;
+    o.minNeighbors = minNeighbors;
+    return o;
+}
+
+// A 64x48 image with one left-bright/right-dark square (the edge cascade fires around it).
+Gray edgeImage()
+{
+    Gray g(64, 48, 100);
+    for (int y = 20; y < 32; ++y) {
+        for (int x = 30; x < 42; ++x)
+            g.at(x, y) = x < 36 ? 230 : 20;
+    }
+    return g;
+}
+
+TEST(FaceDetector, IntegralTablesMatchBruteForce)
+{
+    FaceDetector d(parseHaarCascade(kEdgeCascade, "edge"), smallOptions(0));
+    const Gray g = randomImage(61, 47, 7);
+    d.evaluateWindow(g.view(), 0, 0);
+    const int stride = d.tableStride();
+    for (int y = 0; y <= g.height; y += 3) {
+        for (int x = 0; x <= g.width; x += 2) {
+            long long s = 0;
+            unsigned long long q = 0;
+            for (int yy = 0; yy < y; ++yy) {
+                for (int xx = 0; xx < x; ++xx) {
+                    const unsigned v = g.at(xx, yy);
+                    s += v;
+                    q += v * v;
+                }
+            }
+            ASSERT_EQ(d.sumTable()[y * stride + x], s) << x << "," << y;
+            ASSERT_EQ(d.squaredSumTable()[y * stride + x], static_cast<std::uint32_t>(q));
+        }
+    }
+}
+
+TEST(FaceDetector, EdgeCascadeWindowDecisions)
+{
+    FaceDetector d(parseHaarCascade(kEdgeCascade, "edge"), smallOptions(0));
+    Gray g(12, 6, 0);
+    for (int y = 0; y < 6; ++y) {
+        for (int x = 0; x < 12; ++x)
+            g.at(x, y) = x < 3 ? 200 : (x < 6 ? 50 : 120);
+    }
+    EXPECT_EQ(d.evaluateWindow(g.view(), 0, 0), 1);   // bright left half: passes
+    EXPECT_EQ(d.evaluateWindow(g.view(), 3, 0), 0);   // dark | flat-ish grey: stage 0 rejects
+    EXPECT_EQ(d.evaluateWindow(g.view(), 6, 0), -1);  // flat: rejected by the variance test
+    EXPECT_EQ(d.evaluateWindow(g.view(), 7, 0), -1);  // outside the image
+}
+
+void compareWithReference(const char* path)
+{
+    if (!std::filesystem::exists(path))
+        GTEST_SKIP() << "opencv-data not installed";
+    const HaarCascade c = loadHaarCascade(path);
+    FaceDetectorOptions o;
+    o.maxFrameSize = {64, 48};
+    FaceDetector d(c, o);
+    int compared = 0;
+    int deep = 0;
+    for (unsigned seed = 1; seed <= 3; ++seed) {
+        const Gray g = randomImage(64, 48, seed);
+        for (int y = 0; y + c.windowHeight <= g.height; y += 3) {
+            for (int x = 0; x + c.windowWidth <= g.width; x += 3) {
+                const int ours = d.evaluateWindow(g.view(), x, y);
+                ASSERT_EQ(ours, referenceEvaluate(c, g, x, y)) << path << " " << x << "," << y;
+                ++compared;
+                deep += ours < -1 || ours == 1;
+            }
+        }
+    }
+    EXPECT_GT(compared, 300);
+    EXPECT_GT(deep, 10);  // some windows got past the first stages
+}
+
+TEST(FaceDetector, WindowDecisionsMatchFloatReferenceDefault)
+{
+    compareWithReference(kDefault);
+}
+TEST(FaceDetector, WindowDecisionsMatchFloatReferenceAlt2)
+{
+    compareWithReference(kAlt2);
+}
+
+TEST(FaceDetector, FullScanFindsTheEdgeAndGroupsIt)
+{
+    const HaarCascade c = parseHaarCascade(kEdgeCascade, "edge");
+    const Gray g = edgeImage();
+    FaceDetector raw(c, smallOptions(0));
+    const int n = raw.detect(g.view());
+    ASSERT_GT(n, 3);
+    for (const Rect& r : raw.rawHits()) {
+        // Every hit straddles the edge at x = 36.
+        EXPECT_LT(r.x, 36);
+        EXPECT_GT(r.x + r.width, 36);
+    }
+    FaceDetector grouped(c, smallOptions(1));
+    const int m = grouped.detect(g.view());
+    ASSERT_GE(m, 1);
+    EXPECT_LT(m, n);
+}
+
+TEST(FaceDetector, GroupRectanglesLikeOpenCv)
+{
+    FaceDetector d(parseHaarCascade(kEdgeCascade, "edge"), smallOptions(2));
+    const Rect in[] = {{10, 10, 20, 20}, {11, 10, 20, 20}, {10, 11, 21, 21}, {50, 50, 20, 20},
+                       {90, 90, 10, 10}, {91, 90, 10, 10}, {90, 91, 10, 10}, {11, 11, 20, 20}};
+    Rect out[8];
+    const int n = d.groupRectangles(in, 2, 0.2, out);
+    ASSERT_EQ(n, 2);
+    // Means rounded: (10+11+10+11)/4 = 10.5 -> 10 (to even), widths (20+20+21+20)/4 = 20.25.
+    EXPECT_EQ(out[0], (Rect{10, 10, 20, 20}));
+    EXPECT_EQ(out[1], (Rect{90, 90, 10, 10}));
+    // A lone rectangle does not survive minNeighbors 2; with 0 everything is returned.
+    EXPECT_EQ(d.groupRectangles(in, 0, 0.2, out), 8);
+}
+
+TEST(FaceDetector, MaskedScanSkipsUnmaskedAndExcludedWindows)
+{
+    const HaarCascade c = parseHaarCascade(kEdgeCascade, "edge");
+    const Gray g = edgeImage();
+    FaceDetector d(c, smallOptions(0));
+    const int full = d.detect(g.view());
+    const long fullWindows = d.windowsEvaluated();
+
+    // Mask at half resolution: all set -> the same hits as the full scan.
+    Gray mask(32, 24, 255);
+    IntegralImage integral(Size{32, 24});
+    ASSERT_TRUE(integral.compute(mask.view()));
+    EXPECT_EQ(d.detectMasked(g.view(), integral, 0.5f, {}), full);
+    EXPECT_EQ(d.windowsEvaluated(), fullWindows);
+
+    // Empty mask: nothing evaluated.
+    Gray none(32, 24, 0);
+    ASSERT_TRUE(integral.compute(none.view()));
+    EXPECT_EQ(d.detectMasked(g.view(), integral, 0.5f, {}), 0);
+    EXPECT_EQ(d.windowsEvaluated(), 0);
+
+    // Mask only the left half: windows there only; none of the hits (at x 30..41) survive.
+    Gray left(32, 24, 0);
+    for (int y = 0; y < 24; ++y) {
+        for (int x = 0; x < 12; ++x)
+            left.at(x, y) = 255;
+    }
+    ASSERT_TRUE(integral.compute(left.view()));
+    EXPECT_EQ(d.detectMasked(g.view(), integral, 0.9f, {}), 0);
+    EXPECT_GT(d.windowsEvaluated(), 0);
+    EXPECT_LT(d.windowsEvaluated(), fullWindows / 2);
+
+    // Full mask, the tracked face's box excluded: no hit has its centre there.
+    ASSERT_TRUE(integral.compute(mask.view()));
+    const Rect tracked[] = {{24, 14, 24, 24}};
+    d.detectMasked(g.view(), integral, 0.5f, tracked);
+    for (const Rect& r : d.rawHits()) {
+        const int cx = r.x + r.width / 2;
+        const int cy = r.y + r.height / 2;
+        EXPECT_FALSE(cx >= 24 && cx < 48 && cy >= 14 && cy < 38);
+    }
+}
+
+TEST(FaceDetector, FirstHitStopsAtTheFirstWindow)
+{
+    const HaarCascade c = parseHaarCascade(kEdgeCascade, "edge");
+    FaceDetector d(c, smallOptions(0));
+    const Gray g = edgeImage();
+    d.detect(g.view());
+    const Rect first = d.rawHits()[0];
+    Rect hit;
+    ASSERT_TRUE(d.detectFirst(g.view(), hit));
+    EXPECT_EQ(hit, first);
+    EXPECT_LT(d.windowsEvaluated(), 1000);
+    const Gray flat(64, 48, 90);
+    EXPECT_FALSE(d.detectFirst(flat.view(), hit));
+}
+
+TEST(FaceDetector, RejectsWrongImagesAndUnsupportedCascades)
+{
+    FaceDetector d(parseHaarCascade(kEdgeCascade, "edge"), smallOptions(0));
+    const Gray big(65, 48, 0);
+    EXPECT_EQ(d.detect(big.view()), -1);
+    EXPECT_STRNE(d.lastError(), "");
+    HaarCascade c = parseHaarCascade(kEdgeCascade, "edge");
+    c.features[0].rects[1].weight = 2.5f;
+    EXPECT_THROW((void)FaceDetector(c, smallOptions(0)), std::runtime_error);
+}
+
+TEST(FaceDetector, NoHeapAllocationPerFrame)
+{
+    if (!testing_support::allocationCountingAvailable())
+        GTEST_SKIP() << "allocation counting unavailable";
+    if (!std::filesystem::exists(kDefault))
+        GTEST_SKIP() << "opencv-data not installed";
+    FaceDetectorOptions o;
+    o.maxFrameSize = {64, 48};
+    FaceDetector d(loadHaarCascade(kDefault), o);
+    const Gray g = randomImage(64, 48, 3);
+    IntegralImage integral(Size{64, 48});
+    ASSERT_TRUE(integral.compute(g.view()));
+    const Rect exclude[] = {{0, 0, 10, 10}};
+    Rect hit;
+    testing_support::AllocationScope scope;
+    d.detect(g.view());
+    d.detectMasked(g.view(), integral, 0.1f, exclude);
+    d.detectFirst(g.view(), hit);
+    EXPECT_EQ(scope.counts().cxxNew, 0);
+    EXPECT_EQ(scope.counts().ownMalloc, 0);
+}
+
+}  // namespace

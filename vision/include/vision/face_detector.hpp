@@ -1,0 +1,106 @@
+#pragma once
+// FaceDetector: our Viola-Jones evaluator (METHOD.md §3) for an OpenCV Haar cascade, built to give
+// the same boxes as cv::CascadeClassifier::detectMultiScale (OpenCV 4.6) with the same cascade
+// and parameters, in integer arithmetic, without allocating per frame.
+//
+// What it matches of OpenCV (cascadedetect.cpp):
+//  - scales: factor = scaleFactor^k (double, stored as float) while the window fits the image;
+//    those with a window below minSize skipped, the first above maxSize ends the list;
+//  - the image is shrunk per scale to round(size / scale) with OpenCV's bit-exact bilinear
+//    resize (INTER_LINEAR_EXACT: 8-bit fractional weights, rounded), and a fixed window slides
+//    over it with a step of 2 px when scale < 2 and 1 px otherwise, skipping one more step
+//    after a window rejected by the first stage; rows limited as OpenCV's stripes limit them
+//    (ceil(w0 / 32) stripes of whole steps, rounded down: sometimes the last row is not scanned);
+//  - a window is rejected when the standard deviation over its inner (w-2)x(h-2) area is <= 10;
+//  - features normalised by 1/sqrt(area * sqsum - sum^2) rounded to float, stage thresholds
+//    lowered by 1e-5, raw hits at (round(x * scale), round(y * scale), round(24 * scale));
+//  - grouping as cv::groupRectangles(minNeighbors, eps 0.2), then boxes clipped to the image.
+// The decisions are exact integer comparisons equivalent to OpenCV's float ones: the float
+// normalisation factor is an integer in Q48, thresholds are placed half a float step below
+// (so a product OpenCV rounds onto the threshold counts as not below it), leaves are Q40.
+//
+// Modes: full scan (detect), masked scan (detectMasked: windows with too little mask, or whose
+// centre lies in an excluded box, are skipped) and first hit (detectFirst: stops at the first
+// window that passes, for verifying a track on a small upright patch).
+
+#include "vision/geometry.hpp"
+#include "vision/haar_cascade.hpp"
+#include "vision/image.hpp"
+#include "vision/integral_image.hpp"
+
+#include <cstdint>
+#include <memory>
+#include <span>
+
+namespace vision {
+
+struct FaceDetectorOptions {
+    Size maxFrameSize{360, 240};  ///< largest image detect() accepts (buffers are sized for it)
+    double scaleFactor = 1.1;     ///< > 1
+    int minNeighbors = 3;         ///< a group needs more than this many raw hits; 0: no grouping
+    Size minSize{0, 0};           ///< smallest face box
+    Size maxSize{0, 0};           ///< largest face box; 0 = the image size
+    int maxRawHits = 8192;        ///< capacity of the raw hit list (extra hits are dropped)
+    int maxFaces = 128;           ///< capacity of the grouped result
+};
+
+class FaceDetector {
+public:
+    /// Converts the cascade to fixed point and allocates every buffer (start-up). Throws
+    /// std::runtime_error on a cascade it cannot evaluate (tilted features, non-integer
+    /// rectangle weights) or bad options.
+    FaceDetector(const HaarCascade& cascade, const FaceDetectorOptions& options);
+    ~FaceDetector();
+    FaceDetector(FaceDetector&&) noexcept;
+    FaceDetector& operator=(FaceDetector&&) noexcept;
+
+    /// Full scan of a Gray8 image no larger than maxFrameSize. Returns the number of faces
+    /// (grouped), or -1 on a bad image (lastError()).
+    int detect(const ConstImageView& gray) noexcept;
+
+    /// Masked scan: a window is evaluated only when the mean of `mask` (0/255, its integral
+    /// image; any resolution, mapped proportionally onto the image) over it is at least
+    /// minFraction, and its centre lies in none of `exclude` (image coordinates).
+    int detectMasked(const ConstImageView& gray, const IntegralImage& mask, float minFraction,
+                     std::span<const Rect> exclude) noexcept;
+
+    /// First hit: scans like detect() and returns true at the first window that passes the
+    /// cascade, with its box in `hit` (no grouping).
+    bool detectFirst(const ConstImageView& gray, Rect& hit) noexcept;
+
+    /// Grouped faces of the last detect()/detectMasked(), clipped to the image like OpenCV's
+    /// (with minNeighbors 0: the raw hits, clipped, up to maxFaces).
+    std::span<const Rect> faces() const noexcept;
+    /// Raw hits (every window that passed) of the last scan, in OpenCV's order, not clipped:
+    /// the last window of a row can reach a pixel past the image by the size rounding.
+    std::span<const Rect> rawHits() const noexcept;
+    /// True when the last scan found more raw hits than maxRawHits.
+    bool rawHitsOverflowed() const noexcept;
+    /// Windows evaluated by the last scan (after masking).
+    long windowsEvaluated() const noexcept;
+
+    /// Cascade result for one window at scale 1 of `gray` (its integral images computed here):
+    /// 1 when it passes, -s when stage s rejects it (0: the first stage), -1 also when the
+    /// window is flat or outside. Testing aid, same decision path as the scans.
+    int evaluateWindow(const ConstImageView& gray, int x, int y) noexcept;
+
+    /// The integral tables of the last scale prepared (scale 1 after evaluateWindow): sums and
+    /// 32-bit wrapping squared sums, (w + 1) x (h + 1) entries at tableStride() per row.
+    const std::int32_t* sumTable() const noexcept;
+    const std::uint32_t* squaredSumTable() const noexcept;
+    int tableStride() const noexcept;
+
+    /// cv::groupRectangles(rects, minNeighbors, eps) into `out` (capacity out.size()), using
+    /// this detector's working arrays (rects.size() <= maxRawHits). Returns the count.
+    int groupRectangles(std::span<const Rect> rects, int minNeighbors, double eps,
+                        std::span<Rect> out) noexcept;
+
+    Size windowSize() const noexcept;
+    const char* lastError() const noexcept;
+
+private:
+    struct Impl;
+    std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace vision
