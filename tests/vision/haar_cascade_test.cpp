@@ -29,7 +29,10 @@ std::string readAll(const std::string& path)
 
 std::string writeFile(const std::string& name, const std::string& text)
 {
-    const std::string dir = testing_support::freshOutputDir("haar_cascade_test");
+    // One folder per test: ctest runs the tests of this file as parallel processes.
+    const std::string dir = testing_support::freshOutputDir(
+        std::string("haar_cascade_test/") +
+        ::testing::UnitTest::GetInstance()->current_test_info()->name());
     const std::string path = dir + "/" + name;
     std::ofstream(path) << text;
     return path;
