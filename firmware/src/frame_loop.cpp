@@ -216,8 +216,8 @@ bool FrameLoop::step() noexcept
         MIRROR_LOG_INFO("frames are good again");
     frameBad_ = false;
     if (cardStage_) {
-        if (cardTrainPending_)
-            trainCard();
+        if (cardTrainPending_ && !cardStage_->trainingPending())
+            reportCardTraining();
         noteCardState();
         cardLayer_->update(state_.card);
     }
@@ -260,15 +260,23 @@ bool FrameLoop::step() noexcept
     return true;
 }
 
-void FrameLoop::trainCard() noexcept
+void FrameLoop::requestCardTraining() noexcept
 {
-    // Step 1 of 4.2: learn the colour from the centre of this frame (the card held there).
+    // Step 1 of 4.2: the card stage learns the colour from the centre of the next good frame
+    // (the card held there), the same way mirror-eval trains it.
+    if (!cardStage_)
+        return;
+    cardStage_->requestTraining(static_cast<float>(config_.card.trainFraction));
+    cardTrainPending_ = true;
+}
+
+void FrameLoop::reportCardTraining() noexcept
+{
     cardTrainPending_ = false;
     const double f = config_.card.trainFraction;
-    const vision::Rect region = vision::centralRegion(source_->size(), static_cast<float>(f));
     char line[640];
-    vision::CardTracker& tracker = cardStage_->tracker();
-    if (!tracker.train(state_.frame.image, state_.chroma, region)) {
+    const vision::CardTracker& tracker = cardStage_->tracker();
+    if (!cardStage_->lastTrainingSucceeded()) {
         std::snprintf(line, sizeof line,
                       "card: training failed (no usable pixels in the centre)\n");
     } else {

@@ -68,13 +68,14 @@ public:
     void formatStatus(Reply& reply) const noexcept;
     /// The card tracker's stage, or null when [card] enabled = false.
     vision::CardStage* cardStage() noexcept { return cardStage_; }
-    /// Trains the card colour on the next good frame (as `card train` does).
-    void requestCardTraining() noexcept { cardTrainPending_ = true; }
+    /// Trains the card colour on the next good frame (as `card train` does); the card stage does
+    /// the training, the loop then keeps the colour and reports it.
+    void requestCardTraining() noexcept;
 
 private:
     void buildPipeline(vision::Size size, vision::PixelFormat format);
     void setUpCard(vision::Size size);
-    void trainCard() noexcept;
+    void reportCardTraining() noexcept;
     void noteCardState() noexcept;
     void formatCard(Reply& reply) const noexcept;
     void registerCommands();
@@ -105,7 +106,7 @@ private:
     std::unique_ptr<CardModelStore> cardStore_;
     std::unique_ptr<render::CardPictureLayer> cardLayer_;
     vision::CardState cardState_ = vision::CardState::Untrained;
-    bool cardTrainPending_ = false;
+    bool cardTrainPending_ = false;  // asked for; reported once the stage has trained
 
     // Steps: wait (idle until the frame is due), capture (decode, copy), the vision stages from
     // kFirstVisionStep on, then render and present.
