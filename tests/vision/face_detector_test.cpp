@@ -1,6 +1,7 @@
 // FaceDetector on synthetic images: integral tables against brute force, window decisions of
 // the fixed-point evaluator against a float reference written like OpenCV's, and the scan modes
-// (full, masked with exclusions, first hit) without heap allocation per frame.
+// (full, masked with exclusions, incremental under a window budget, first hit) without heap
+// allocation per frame.
 #include "vision/face_detector.hpp"
 
 #include "alloc_counter.hpp"
@@ -12,8 +13,10 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <filesystem>
 #include <random>
+#include <span>
 #include <stdexcept>
 #include <vector>
 
@@ -140,6 +143,11 @@ int referenceEvaluate(const HaarCascade& c, const Gray& g, int x0, int y0)
     return 1;
 }
 
+std::vector<Rect> copyOf(std::span<const Rect> r)
+{
+    return {r.begin(), r.end()};
+}
+
 FaceDetectorOptions smallOptions(int minNeighbors)
 {
     FaceDetectorOptions o;
@@ -231,6 +239,69 @@ TEST(FaceDetector, WindowDecisionsMatchFloatReferenceAlt2)
     compareWithReference(kAlt2);
 }
 
+// The row prefilter (first stages over a whole row, float decisions) must decide every window
+// as the one-window-at-a-time integer path does, on both stump and tree cascades.
+void compareRowPrefilter(const char* path)
+{
+    if (!std::filesystem::exists(path))
+        GTEST_SKIP() << "opencv-data not installed";
+    const HaarCascade full = loadHaarCascade(path);
+    long hits = 0;
+    // Cut to its first stages, the cascade passes many windows of a random image: deep
+    // decisions (prefiltered stages, then single windows) get compared too.
+    for (const std::size_t stageCount : {std::size_t{4}, std::size_t{8}, full.stages.size()}) {
+        HaarCascade c = full;
+        c.stages.resize(stageCount);
+        FaceDetectorOptions o;
+        o.maxFrameSize = {160, 120};
+        o.minNeighbors = 0;
+        o.maxRawHits = 20000;
+        o.maxFaces = 20000;
+        FaceDetector rows(c, o);
+        o.rowPrefilter = false;
+        FaceDetector single(c, o);
+        // An even and an odd size (the deinterleaved table's last column).
+        const Gray images[] = {randomImage(160, 120, 11), randomImage(131, 97, 12)};
+        for (const Gray& g : images) {
+            rows.detect(g.view());
+            single.detect(g.view());
+            EXPECT_EQ(rows.windowsEvaluated(), single.windowsEvaluated()) << g.width;
+            EXPECT_EQ(copyOf(rows.rawHits()), copyOf(single.rawHits())) << g.width;
+            hits += static_cast<long>(rows.rawHits().size());
+        }
+    }
+    EXPECT_GT(hits, 100);
+    std::printf("[ info ] %s: %ld raw hits compared\n", path, hits);
+}
+
+TEST(FaceDetector, RowPrefilterDecidesLikeSingleWindowsDefault)
+{
+    compareRowPrefilter(kDefault);
+}
+TEST(FaceDetector, RowPrefilterDecidesLikeSingleWindowsAlt2)
+{
+    compareRowPrefilter(kAlt2);
+}
+
+TEST(FaceDetector, RowPrefilterLeavesStageSumsOnTheThresholdToTheExactPath)
+{
+    // The passing leaf equals the stage threshold (as lowered by 1e-5): the exact sum is not
+    // below it, so those windows pass; the prefilter's Q20 sum cannot tell and must defer.
+    HaarCascade c = parseHaarCascade(kEdgeCascade, "edge");
+    c.stages[0].threshold = 0.3f;
+    c.leaves[static_cast<std::size_t>(c.weak[0].firstLeaf + 1)] = 0.3f - 1e-5f;
+    const Gray g = edgeImage();
+    FaceDetectorOptions o = smallOptions(0);
+    FaceDetector rows(c, o);
+    o.rowPrefilter = false;
+    FaceDetector single(c, o);
+    rows.detect(g.view());
+    single.detect(g.view());
+    EXPECT_GT(single.rawHits().size(), 3u);
+    EXPECT_EQ(copyOf(rows.rawHits()), copyOf(single.rawHits()));
+    EXPECT_EQ(rows.windowsEvaluated(), single.windowsEvaluated());
+}
+
 TEST(FaceDetector, FullScanFindsTheEdgeAndGroupsIt)
 {
     const HaarCascade c = parseHaarCascade(kEdgeCascade, "edge");
@@ -307,6 +378,150 @@ TEST(FaceDetector, MaskedScanSkipsUnmaskedAndExcludedWindows)
     }
 }
 
+// Runs incremental calls on `g` until the scan completes; returns the number of calls and
+// checks the per-call budget guarantee.
+int scanIncrementally(FaceDetector& d, const Gray& g, const IntegralImage* mask, float minFraction,
+                      std::span<const Rect> exclude, long budget, long& windows)
+{
+    windows = 0;
+    for (int calls = 1; calls < 100000; ++calls) {
+        const bool done = d.detectMaskedIncremental(g.view(), mask, minFraction, exclude, budget);
+        EXPECT_LE(d.windowsEvaluated(), budget > 0 ? budget : windows + d.windowsEvaluated());
+        windows += d.windowsEvaluated();
+        if (done) {
+            EXPECT_FALSE(d.incrementalScanActive());
+            return calls;
+        }
+        EXPECT_TRUE(d.incrementalScanActive());
+    }
+    ADD_FAILURE() << "incremental scan never completed";
+    return -1;
+}
+
+TEST(FaceDetector, IncrementalWithoutBudgetEqualsTheWholeScan)
+{
+    const HaarCascade c = parseHaarCascade(kEdgeCascade, "edge");
+    const Gray g = edgeImage();
+    FaceDetector whole(c, smallOptions(1));
+    FaceDetector inc(c, smallOptions(1));
+    Gray left(32, 24, 0);
+    for (int y = 0; y < 24; ++y) {
+        for (int x = 0; x < 20; ++x)
+            left.at(x, y) = 255;
+    }
+    IntegralImage mask(Size{32, 24});
+    ASSERT_TRUE(mask.compute(left.view()));
+    const Rect exclude[] = {{0, 0, 12, 12}};
+
+    // No mask: detect().
+    whole.detect(g.view());
+    ASSERT_TRUE(inc.detectMaskedIncremental(g.view(), nullptr, 0.f, {}, 0));
+    EXPECT_EQ(copyOf(inc.faces()), copyOf(whole.faces()));
+    EXPECT_EQ(copyOf(inc.rawHits()), copyOf(whole.rawHits()));
+    EXPECT_EQ(inc.windowsEvaluated(), whole.windowsEvaluated());
+    ASSERT_FALSE(whole.faces().empty());
+
+    // Mask and exclusion: detectMasked().
+    whole.detectMasked(g.view(), mask, 0.3f, exclude);
+    ASSERT_TRUE(inc.detectMaskedIncremental(g.view(), &mask, 0.3f, exclude, 0));
+    EXPECT_EQ(copyOf(inc.faces()), copyOf(whole.faces()));
+    EXPECT_EQ(copyOf(inc.rawHits()), copyOf(whole.rawHits()));
+    EXPECT_EQ(inc.windowsEvaluated(), whole.windowsEvaluated());
+}
+
+TEST(FaceDetector, SmallBudgetCompletesOverSeveralCallsWithTheSameFaces)
+{
+    const HaarCascade c = parseHaarCascade(kEdgeCascade, "edge");
+    const Gray g = edgeImage();
+    FaceDetector whole(c, smallOptions(1));
+    whole.detect(g.view());
+    const long fullWindows = whole.windowsEvaluated();
+    ASSERT_GT(fullWindows, 500);
+    for (const long budget : {1L, 7L, 100L, fullWindows - 1}) {
+        FaceDetector inc(c, smallOptions(1));
+        long windows = 0;
+        const int calls = scanIncrementally(inc, g, nullptr, 0.f, {}, budget, windows);
+        EXPECT_EQ(calls, static_cast<int>((fullWindows + budget - 1) / budget)) << budget;
+        EXPECT_EQ(windows, fullWindows) << budget;
+        EXPECT_EQ(copyOf(inc.faces()), copyOf(whole.faces())) << budget;
+        EXPECT_EQ(copyOf(inc.rawHits()), copyOf(whole.rawHits())) << budget;
+        // The next call starts a new scan with the same result.
+        const int again = scanIncrementally(inc, g, nullptr, 0.f, {}, budget, windows);
+        EXPECT_EQ(again, calls);
+        EXPECT_EQ(copyOf(inc.faces()), copyOf(whole.faces()));
+    }
+}
+
+TEST(FaceDetector, SmallBudgetOnARealCascadeGivesTheWholeScansHits)
+{
+    if (!std::filesystem::exists(kDefault))
+        GTEST_SKIP() << "opencv-data not installed";
+    FaceDetectorOptions o;
+    o.maxFrameSize = {64, 48};
+    o.minNeighbors = 0;
+    const HaarCascade c = loadHaarCascade(kDefault);
+    FaceDetector whole(c, o);
+    FaceDetector inc(c, o);
+    const Gray g = randomImage(64, 48, 2);
+    Gray half(16, 12, 0);
+    for (int y = 0; y < 12; ++y) {
+        for (int x = 0; x < 9; ++x)
+            half.at(x, y) = 255;
+    }
+    IntegralImage mask(Size{16, 12});
+    ASSERT_TRUE(mask.compute(half.view()));
+    whole.detectMasked(g.view(), mask, 0.5f, {});
+    long windows = 0;
+    const int calls = scanIncrementally(inc, g, &mask, 0.5f, {}, 50, windows);
+    EXPECT_GT(calls, 3);
+    EXPECT_EQ(windows, whole.windowsEvaluated());
+    EXPECT_EQ(copyOf(inc.rawHits()), copyOf(whole.rawHits()));
+    EXPECT_EQ(copyOf(inc.faces()), copyOf(whole.faces()));
+}
+
+TEST(FaceDetector, IncrementalScanRestartsOnResetSizeChangeAndWholeScans)
+{
+    const HaarCascade c = parseHaarCascade(kEdgeCascade, "edge");
+    const Gray g = edgeImage();
+    FaceDetector d(c, smallOptions(1));
+    d.detect(g.view());
+    const std::vector<Rect> expected = copyOf(d.faces());
+    const long fullWindows = d.windowsEvaluated();
+
+    // Half a scan, then reset: the next scan starts from the beginning and takes every window.
+    EXPECT_FALSE(d.detectMaskedIncremental(g.view(), nullptr, 0.f, {}, fullWindows / 2));
+    d.resetIncremental();
+    EXPECT_FALSE(d.incrementalScanActive());
+    long windows = 0;
+    scanIncrementally(d, g, nullptr, 0.f, {}, 64, windows);
+    EXPECT_EQ(windows, fullWindows);
+    EXPECT_EQ(copyOf(d.faces()), expected);
+
+    // A whole scan in between abandons the incremental one.
+    EXPECT_FALSE(d.detectMaskedIncremental(g.view(), nullptr, 0.f, {}, fullWindows / 2));
+    d.detect(g.view());
+    EXPECT_FALSE(d.incrementalScanActive());
+
+    // Another image size starts a new scan.
+    EXPECT_FALSE(d.detectMaskedIncremental(g.view(), nullptr, 0.f, {}, fullWindows / 2));
+    Gray small(40, 30, 100);
+    for (int y = 8; y < 20; ++y) {
+        for (int x = 10; x < 22; ++x)
+            small.at(x, y) = x < 16 ? 230 : 20;
+    }
+    FaceDetector ref(c, smallOptions(1));
+    ref.detect(small.view());
+    scanIncrementally(d, small, nullptr, 0.f, {}, 0, windows);
+    EXPECT_EQ(windows, ref.windowsEvaluated());
+    EXPECT_EQ(copyOf(d.faces()), copyOf(ref.faces()));
+
+    // Bad image: false, error, scan abandoned.
+    const Gray big(65, 48, 0);
+    EXPECT_FALSE(d.detectMaskedIncremental(big.view(), nullptr, 0.f, {}, 10));
+    EXPECT_STRNE(d.lastError(), "");
+    EXPECT_FALSE(d.incrementalScanActive());
+}
+
 TEST(FaceDetector, FirstHitStopsAtTheFirstWindow)
 {
     const HaarCascade c = parseHaarCascade(kEdgeCascade, "edge");
@@ -351,6 +566,8 @@ TEST(FaceDetector, NoHeapAllocationPerFrame)
     d.detect(g.view());
     d.detectMasked(g.view(), integral, 0.1f, exclude);
     d.detectFirst(g.view(), hit);
+    while (!d.detectMaskedIncremental(g.view(), &integral, 0.1f, exclude, 100)) {
+    }
     EXPECT_EQ(scope.counts().cxxNew, 0);
     EXPECT_EQ(scope.counts().ownMalloc, 0);
 }

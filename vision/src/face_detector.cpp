@@ -17,9 +17,14 @@ namespace vision {
 namespace {
 
 constexpr int kNormShift = 48;  // Q of the per-window normalisation factor and node thresholds
-constexpr int kLeafShift = 40;  // Q of leaf values and stage thresholds
-constexpr float kStageThresholdEps = 1e-5f;  // OpenCV's THRESHOLD_EPS
-constexpr int kResizeShift = 8;              // INTER_LINEAR_EXACT weights for 8-bit images
+constexpr double kNormScale = 281474976710656.0;  // 2^kNormShift
+constexpr int kLeafShift = 40;                    // Q of leaf values and stage thresholds
+constexpr float kStageThresholdEps = 1e-5f;       // OpenCV's THRESHOLD_EPS
+constexpr int kResizeShift = 8;                   // INTER_LINEAR_EXACT weights for 8-bit images
+// The row prefilter goes on to the next stage while at least 1 / divisor of the row is alive,
+// and runs on rows with at least kPrefilterMinWindows windows to evaluate.
+constexpr int kPrefilterAliveDivisor = 4;
+constexpr int kPrefilterMinWindows = 4;
 
 // A rectangle feature as integral-image offsets for the detector's table stride.
 struct FixedFeature {
@@ -35,13 +40,175 @@ struct Stump {
     std::int64_t right;
     std::int64_t restMax;  // most / least the stage's later stumps can still add (exit early)
     std::int64_t restMin;
+    int featureIndex;
+    float fileThreshold;  // as in the file: the row prefilter compares floats like OpenCV
 };
+
+// A feature for the row prefilter: offsets in the plain table (step-1 scales) and in the
+// column-deinterleaved one (step-2 scales), so the windows of a row are consecutive entries.
+struct RowFeature {
+    std::int32_t plain[3][4];
+    std::int32_t split[3][4];
+    std::int32_t weight[3];
+    bool twoRects;  // weight[2] == 0: most features; a kernel without the third rectangle
+};
+
+// Leaves in the row prefilter: Q20 in 32 bits (8 lanes per AVX2 vector, not 4), each within half
+// a unit of the exact Q40 value; a stage decides only where the rounding cannot matter.
+constexpr int kRowLeafShift = 20;
+
+std::int32_t rowLeaf(std::int64_t q40)
+{
+    constexpr int shift = kLeafShift - kRowLeafShift;
+    return static_cast<std::int32_t>((q40 + (std::int64_t{1} << (shift - 1))) >> shift);
+}
+
+struct RowStump {
+    RowFeature feature;
+    float threshold;
+    std::int32_t left;  // Q20
+    std::int32_t right;
+};
+
+// A two-node tree (alt2): node 0 leads to a leaf (`direct`) or to node 1 (leaves below1 and
+// above1); node1OnBelow says which way.
+struct RowTree {
+    RowFeature feature0;
+    RowFeature feature1;
+    float threshold0;
+    float threshold1;
+    bool node1OnBelow;
+    std::int32_t direct;  // Q20
+    std::int32_t below1;
+    std::int32_t above1;
+};
+
+// The row prefilter's kernels: one weak classifier over `n` consecutive windows, the decisions
+// in float exactly as OpenCV makes them (an integer feature sum below 2^24 is exact in float,
+// the product rounded once), the leaves summed in Q20 (rowLeaf). On x86-64 also built for AVX2,
+// chosen at load time (aarch64: NEON is the baseline).
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+#define MIRROR_VJ_CLONES __attribute__((target_clones("avx2", "default")))
+#else
+#define MIRROR_VJ_CLONES
+#endif
+
+// A feature's 12 corner pointers for the windows from `base` on, and its weights, as plain
+// locals: the compiler must see that the stage sums the kernels write do not move them.
+#define MIRROR_VJ_TAPS2(f, prefix)                                 \
+    const auto& prefix##o = split ? (f).split : (f).plain;         \
+    const std::int32_t* const prefix##a0 = base + prefix##o[0][0]; \
+    const std::int32_t* const prefix##a1 = base + prefix##o[0][1]; \
+    const std::int32_t* const prefix##a2 = base + prefix##o[0][2]; \
+    const std::int32_t* const prefix##a3 = base + prefix##o[0][3]; \
+    const std::int32_t* const prefix##b0 = base + prefix##o[1][0]; \
+    const std::int32_t* const prefix##b1 = base + prefix##o[1][1]; \
+    const std::int32_t* const prefix##b2 = base + prefix##o[1][2]; \
+    const std::int32_t* const prefix##b3 = base + prefix##o[1][3]; \
+    const std::int32_t prefix##wa = (f).weight[0];                 \
+    const std::int32_t prefix##wb = (f).weight[1]
+#define MIRROR_VJ_TAPS(f, prefix)                                  \
+    MIRROR_VJ_TAPS2(f, prefix);                                    \
+    const std::int32_t* const prefix##c0 = base + prefix##o[2][0]; \
+    const std::int32_t* const prefix##c1 = base + prefix##o[2][1]; \
+    const std::int32_t* const prefix##c2 = base + prefix##o[2][2]; \
+    const std::int32_t* const prefix##c3 = base + prefix##o[2][3]; \
+    const std::int32_t prefix##wc = (f).weight[2]
+#define MIRROR_VJ_FEATURE2(prefix, j)                                               \
+    (prefix##wa * (prefix##a0[j] - prefix##a1[j] - prefix##a2[j] + prefix##a3[j]) + \
+     prefix##wb * (prefix##b0[j] - prefix##b1[j] - prefix##b2[j] + prefix##b3[j]))
+#define MIRROR_VJ_FEATURE(prefix, j) \
+    (MIRROR_VJ_FEATURE2(prefix, j) + \
+     prefix##wc * (prefix##c0[j] - prefix##c1[j] - prefix##c2[j] + prefix##c3[j]))
+
+MIRROR_VJ_CLONES void rowStumpPass(const RowStump& st, const std::int32_t* base, bool split, int n,
+                                   const float* __restrict vnf,
+                                   std::int32_t* __restrict acc) noexcept
+{
+    const float thr = st.threshold;
+    const std::int32_t left = st.left;
+    const std::int32_t right = st.right;
+    if (st.feature.twoRects) {
+        MIRROR_VJ_TAPS2(st.feature, f);
+        for (int j = 0; j < n; ++j) {
+            const float v = static_cast<float>(MIRROR_VJ_FEATURE2(f, j)) * vnf[j];
+            acc[j] += v < thr ? left : right;
+        }
+        return;
+    }
+    MIRROR_VJ_TAPS(st.feature, f);
+    for (int j = 0; j < n; ++j) {
+        const float v = static_cast<float>(MIRROR_VJ_FEATURE(f, j)) * vnf[j];
+        acc[j] += v < thr ? left : right;
+    }
+}
+
+// One tree over the windows; F0 / F1: the features' value macros (two or three rectangles).
+#define MIRROR_VJ_TREE_LOOP(F0, F1)                              \
+    for (int j = 0; j < n; ++j) {                                \
+        const float v0 = static_cast<float>(F0(f0, j)) * vnf[j]; \
+        const float v1 = static_cast<float>(F1(f1, j)) * vnf[j]; \
+        const bool toNode1 = (v0 < thr0) == node1OnBelow;        \
+        const std::int32_t leaf1 = v1 < thr1 ? below1 : above1;  \
+        acc[j] += toNode1 ? leaf1 : direct;                      \
+    }
+
+MIRROR_VJ_CLONES void rowTreePass(const RowTree& t, const std::int32_t* base, bool split, int n,
+                                  const float* __restrict vnf,
+                                  std::int32_t* __restrict acc) noexcept
+{
+    const float thr0 = t.threshold0;
+    const float thr1 = t.threshold1;
+    const bool node1OnBelow = t.node1OnBelow;
+    const std::int32_t direct = t.direct;
+    const std::int32_t below1 = t.below1;
+    const std::int32_t above1 = t.above1;
+    if (t.feature0.twoRects && t.feature1.twoRects) {
+        MIRROR_VJ_TAPS2(t.feature0, f0);
+        MIRROR_VJ_TAPS2(t.feature1, f1);
+        MIRROR_VJ_TREE_LOOP(MIRROR_VJ_FEATURE2, MIRROR_VJ_FEATURE2)
+    } else if (t.feature0.twoRects) {
+        MIRROR_VJ_TAPS2(t.feature0, f0);
+        MIRROR_VJ_TAPS(t.feature1, f1);
+        MIRROR_VJ_TREE_LOOP(MIRROR_VJ_FEATURE2, MIRROR_VJ_FEATURE)
+    } else if (t.feature1.twoRects) {
+        MIRROR_VJ_TAPS(t.feature0, f0);
+        MIRROR_VJ_TAPS2(t.feature1, f1);
+        MIRROR_VJ_TREE_LOOP(MIRROR_VJ_FEATURE, MIRROR_VJ_FEATURE2)
+    } else {
+        MIRROR_VJ_TAPS(t.feature0, f0);
+        MIRROR_VJ_TAPS(t.feature1, f1);
+        MIRROR_VJ_TREE_LOOP(MIRROR_VJ_FEATURE, MIRROR_VJ_FEATURE)
+    }
+}
+
+// A stage's outcome for windows [0, n) of a row from their Q20 sums: those alive (result 1)
+// are rejected (-si), parked for the exact path from this stage (2, from = si) or stay alive.
+// Branch-free: which windows a stage rejects is data dependent. Returns how many stay alive.
+MIRROR_VJ_CLONES int settleStage(const std::int32_t* __restrict acc, int* __restrict result,
+                                 int* __restrict from, int n, int si, std::int32_t rowReject,
+                                 std::int32_t rowPass) noexcept
+{
+    int alive = 0;
+    for (int j = 0; j < n; ++j) {
+        const int r = result[j];
+        const bool live = r == 1;
+        const bool reject = live & (acc[j] < rowReject);
+        const bool park = live & !reject & (acc[j] < rowPass);
+        result[j] = reject ? -si : (park ? 2 : r);
+        from[j] = park ? si : from[j];
+        alive += live & !reject & !park;
+    }
+    return alive;
+}
 
 struct TreeNode {
     FixedFeature feature;
     std::int64_t threshold;
     int left;
     int right;
+    int featureIndex;
+    float fileThreshold;
 };
 
 struct FixedWeak {
@@ -55,6 +222,10 @@ struct FixedStage {
     std::int64_t threshold;  // Q40 of (float(threshold) - 1e-5f)
     int first;               // first stump (stump cascades) or weak classifier (trees)
     int count;
+    // Row prefilter, Q20 sums: below rowReject the exact sum is surely below the threshold, from
+    // rowPass on surely not; between, the exact scalar path decides.
+    std::int32_t rowReject;
+    std::int32_t rowPass;
 };
 
 // The exact comparison "float(f * vnf) < thr" as "f * K < q" with K = vnf * 2^48 (an integer:
@@ -149,9 +320,21 @@ struct FaceDetector::Impl {
     double normArea = 0.0;
     std::int64_t nfRejectBelow = 0;  // nf below this is surely flat (std dev <= 10)
 
+    // The row prefilter (stumps and two-node trees): the weak classifiers in stage order,
+    // parallel to stumpList / weak.
+    bool rowPrefilter = false;
+    std::vector<RowStump> rowStumps;
+    std::vector<RowTree> rowTrees;
+
     // Per-frame buffers, sized for maxFrameSize.
     std::vector<std::uint8_t> scaled;
     std::vector<std::int32_t> sum;
+    std::vector<std::int32_t> sumSplit;  // `sum` with even columns first (step-2 scales)
+    std::vector<float> rowNorm;          // per window of a row: vnf, 0 when flat
+    std::vector<std::int32_t> rowAcc;    // stage sums, Q20
+    std::vector<int> rowResult;  // 1: alive; 2: to the exact path from rowFrom; else as runAt
+    std::vector<int> rowFrom;    // stage from which the exact path continues
+    std::vector<std::uint8_t> rowWanted;  // not masked out nor excluded
     std::vector<std::uint32_t> sqsum;
     std::vector<std::uint32_t> rowTmp;
     std::vector<int> xofs0, xofs1, yofs0, yofs1;
@@ -193,25 +376,58 @@ struct FaceDetector::Impl {
         return out;
     }
 
-    // The inverse of OpenCV's runAt: 1 = pass, -s = rejected at stage s, -1 = flat window.
-    int runAt(const std::int32_t* p, const std::uint32_t* q) const noexcept
+    RowFeature rowFeature(const HaarFeature& f) const
+    {
+        RowFeature out{};
+        out.twoRects = f.rectCount <= 2;
+        const int half = (stride + 1) / 2;
+        // Column c of the deinterleaved table: even columns first, odd ones from `half` on.
+        auto split = [&](int r, int c) { return r * stride + (c & 1 ? half : 0) + (c >> 1); };
+        for (int i = 0; i < f.rectCount; ++i) {
+            const HaarRect& r = f.rects[static_cast<std::size_t>(i)];
+            out.weight[i] = static_cast<std::int32_t>(r.weight);
+            const int xs[4] = {r.x, r.x + r.width, r.x, r.x + r.width};
+            const int ys[4] = {r.y, r.y, r.y + r.height, r.y + r.height};
+            for (int k = 0; k < 4; ++k) {
+                out.plain[i][k] = ys[k] * stride + xs[k];
+                out.split[i][k] = split(ys[k], xs[k]);
+            }
+        }
+        return out;
+    }
+
+    // OpenCV's variance normalisation factor of the window at p/q, 0 when the window is flat.
+    float windowNorm(const std::int32_t* p, const std::uint32_t* q) const noexcept
     {
         const std::int32_t valsum = rectSum(p, normOfs);
         const std::uint32_t valsq = q[normOfs[0]] - q[normOfs[1]] - q[normOfs[2]] + q[normOfs[3]];
         const std::int64_t nfi = static_cast<std::int64_t>(normArea) * valsq -
                                  static_cast<std::int64_t>(valsum) * valsum;
         if (nfi < nfRejectBelow)
-            return -1;
+            return 0.0f;
         // As OpenCV: vnf = float(1 / sqrt(nf)); flat when area * vnf >= 0.1.
         const float vnf = static_cast<float>(1.0 / std::sqrt(static_cast<double>(nfi)));
         if (!(normArea * static_cast<double>(vnf) < 1e-1))
+            return 0.0f;
+        return vnf;
+    }
+
+    // The inverse of OpenCV's runAt: 1 = pass, -s = rejected at stage s, -1 = flat window.
+    // Stages before firstStage are taken as passed (the row prefilter evaluated them).
+    int runAt(const std::int32_t* p, const std::uint32_t* q, int firstStage = 0) const noexcept
+    {
+        const float vnf = windowNorm(p, q);
+        if (vnf == 0.0f)
             return -1;
-        const auto k = static_cast<std::int64_t>(std::ldexp(static_cast<double>(vnf), kNormShift));
+        // vnf is a float >= 2^-25 here: vnf * 2^48 is an integer (exponent arithmetic only).
+        const auto k = static_cast<std::int64_t>(static_cast<double>(vnf) * kNormScale);
 
         const int nstages = static_cast<int>(stages.size());
         if (stumps) {
-            const Stump* s = stumpList.data();
-            for (int si = 0; si < nstages; ++si) {
+            const Stump* s =
+                stumpList.data() +
+                (firstStage < nstages ? stages[static_cast<std::size_t>(firstStage)].first : 0);
+            for (int si = firstStage; si < nstages; ++si) {
                 const FixedStage& st = stages[static_cast<std::size_t>(si)];
                 std::int64_t acc = 0;
                 const Stump* end = s + st.count;
@@ -231,7 +447,7 @@ struct FaceDetector::Impl {
             }
             return 1;
         }
-        for (int si = 0; si < nstages; ++si) {
+        for (int si = firstStage; si < nstages; ++si) {
             const FixedStage& st = stages[static_cast<std::size_t>(si)];
             std::int64_t acc = 0;
             for (int i = 0; i < st.count; ++i) {
@@ -271,7 +487,8 @@ struct FaceDetector::Impl {
     }
 
     // Shrinks `gray` to dw x dh (bit-exact bilinear) and builds the integral tables.
-    void prepare(const ConstImageView& gray, int dw, int dh) noexcept
+    // With `split`, also the column-deinterleaved sum table for the row prefilter.
+    void prepare(const ConstImageView& gray, int dw, int dh, bool split = false) noexcept
     {
         resizeTable(gray.width, dw, {xofs0.data(), xofs1.data(), xw0.data(), xw1.data()});
         resizeTable(gray.height, dh, {yofs0.data(), yofs1.data(), yw0.data(), yw1.data()});
@@ -314,34 +531,121 @@ struct FaceDetector::Impl {
                 q1[x] = q0[x] + rq;
             }
         }
+        if (split) {
+            const int half = (stride + 1) / 2;
+            for (int y = 0; y <= dh; ++y) {
+                const std::int32_t* in = sum.data() + static_cast<std::ptrdiff_t>(y) * stride;
+                std::int32_t* even = sumSplit.data() + static_cast<std::ptrdiff_t>(y) * stride;
+                std::int32_t* odd = even + half;
+                for (int x = 0; x + 1 <= dw; x += 2) {
+                    even[x >> 1] = in[x];
+                    odd[x >> 1] = in[x + 1];
+                }
+                if ((dw & 1) == 0)
+                    even[dw >> 1] = in[dw];
+            }
+        }
     }
 
-    enum class Mode { Full, Masked, First };
+    // Evaluates stages 0.. of the row's windows j0 <= j < j1 (x = j * step, rows y) together,
+    // a weak classifier at a time over all of them (vectorised), while at least a quarter of
+    // them is still alive: rowResult[j] = 1 when window j passed those stages, 2 when a stage
+    // sum was too close to its threshold to decide in Q20 (runAt continues from rowFrom[j]),
+    // else runAt's value. Returns how many stages were done; runAt continues from there for
+    // the windows still alive. Decisions are OpenCV's float comparisons (the integer path's
+    // equivalent) and sure stage outcomes only, so the results are those of runAt.
+    int prefilterRow(int y, int step, int j0, int j1) noexcept
+    {
+        const std::ptrdiff_t row = static_cast<std::ptrdiff_t>(y) * stride;
+        int alive = 0;
+        for (int j = j0; j < j1; ++j) {
+            const std::ptrdiff_t at = row + static_cast<std::ptrdiff_t>(j) * step;
+            const float vnf = windowNorm(sum.data() + at, sqsum.data() + at);
+            rowNorm[static_cast<std::size_t>(j)] = vnf;
+            rowResult[static_cast<std::size_t>(j)] = vnf == 0.0f ? -1 : 1;
+            rowFrom[static_cast<std::size_t>(j)] = 0;
+            alive += vnf != 0.0f;
+        }
+        const bool split = step == 2;
+        const std::int32_t* table = (split ? sumSplit.data() : sum.data()) + row;
+        const int nstages = static_cast<int>(stages.size());
+        // Survivors cluster (faces, texture): each stage runs over the span from the first
+        // to the last window still alive, while at least 1 / divisor of the span is alive.
+        int lo = j0;
+        int hi = j1;
+        int si = 0;
+        for (; si < nstages; ++si) {
+            while (lo < hi && rowResult[static_cast<std::size_t>(lo)] != 1)
+                ++lo;
+            while (hi > lo && rowResult[static_cast<std::size_t>(hi - 1)] != 1)
+                --hi;
+            const int n = hi - lo;
+            if (n == 0 || alive * kPrefilterAliveDivisor < n)
+                break;
+            const FixedStage& st = stages[static_cast<std::size_t>(si)];
+            const std::int32_t* base = table + lo;
+            const float* vnf = rowNorm.data() + lo;
+            std::int32_t* acc = rowAcc.data() + lo;
+            std::fill_n(acc, n, 0);
+            for (int i = st.first; i < st.first + st.count; ++i) {
+                const auto k = static_cast<std::size_t>(i);
+                if (stumps)
+                    rowStumpPass(rowStumps[k], base, split, n, vnf, acc);
+                else
+                    rowTreePass(rowTrees[k], base, split, n, vnf, acc);
+            }
+            alive = settleStage(acc, rowResult.data() + lo, rowFrom.data() + lo, n, si,
+                                st.rowReject, st.rowPass);
+        }
+        return si;
+    }
 
-    // The scan of cv::CascadeClassifier::detectMultiScaleNoGrouping. Returns true when `First`
-    // found a hit (in raw[0]).
-    bool scan(const ConstImageView& gray, Mode mode, const IntegralImage* mask, float minFraction,
-              std::span<const Rect> exclude) noexcept
+    // Where a scan stands: the next scale of OpenCV's list and the next window in it. detect()
+    // runs a scan from start to end in one call; detectMaskedIncremental() keeps it between calls.
+    struct Cursor {
+        bool active = false;   // a scan is in progress
+        bool inScale = false;  // the scale fields below describe the scale being scanned
+        Size image{};          // size of the images of this scan
+        double nextFactor = 1.0;
+        int nstripes = 0;
+        float sc = 1.0f;
+        int dw = 0, dh = 0, step = 2, xEnd = 0, yEnd = 0, boxW = 0, boxH = 0;
+        int y = 0, x = 0;  // next window of the scale
+    };
+    Cursor cursor;
+
+    enum class Stop { Done, Budget, FirstHit };
+
+    void startScan(Size image) noexcept
     {
         rawCount = 0;
         rawOverflow = false;
-        windows = 0;
-        const int imgW = gray.width;
-        const int imgH = gray.height;
+        cursor = {};
+        cursor.active = true;
+        cursor.image = image;
+    }
+
+    // Moves the cursor to the next scale with windows to scan, as OpenCV's
+    // detectMultiScaleNoGrouping lists them; false past the last one.
+    bool enterNextScale() noexcept
+    {
+        Cursor& c = cursor;
+        const int imgW = c.image.width;
+        const int imgH = c.image.height;
         const int maxW = options.maxSize.width > 0 ? options.maxSize.width : imgW;
         const int maxH = options.maxSize.height > 0 ? options.maxSize.height : imgH;
         if (imgW < winW || imgH < winH)
             return false;
-        const Size maskSize = mask != nullptr ? mask->size() : Size{};
-        int nstripes = 0;
-        for (double factor = 1.0;; factor *= options.scaleFactor) {
+        for (;;) {
+            const double factor = c.nextFactor;
+            c.nextFactor *= options.scaleFactor;
             if (std::lrint(winW * factor) > imgW || std::lrint(winH * factor) > imgH)
-                break;
+                return false;
             const auto sc = static_cast<float>(factor);
             const long ww = std::lrint(static_cast<float>(winW) * sc);
             const long wh = std::lrint(static_cast<float>(winH) * sc);
             if (ww > maxW || wh > maxH)
-                break;
+                return false;
             if (ww < options.minSize.width || wh < options.minSize.height)
                 continue;
 
@@ -353,59 +657,146 @@ struct FaceDetector::Impl {
             // OpenCV cuts the rows into ceil(w0 / 32) stripes (w0: the first scale's working
             // width) of a whole number of steps, rounding the step count down: the last row of
             // a scale can fall outside every stripe and is then never scanned.
-            if (nstripes == 0)
-                nstripes = std::max((xEnd + 31) / 32, 1);
-            const int stripe = std::max((rows / step + nstripes - 1) / nstripes, 1) * step;
-            const int yEnd = std::min(nstripes * stripe, rows);
+            if (c.nstripes == 0)
+                c.nstripes = std::max((xEnd + 31) / 32, 1);
+            const int stripe = std::max((rows / step + c.nstripes - 1) / c.nstripes, 1) * step;
+            const int yEnd = std::min(c.nstripes * stripe, rows);
             if (xEnd == 0 || yEnd == 0)
                 continue;
-            prepare(gray, dw, dh);
-            const int boxW = static_cast<int>(ww);
-            const int boxH = static_cast<int>(wh);
-            for (int y = 0; y < yEnd; y += step) {
-                const std::int32_t* prow = sum.data() + static_cast<std::ptrdiff_t>(y) * stride;
-                const std::uint32_t* qrow = sqsum.data() + static_cast<std::ptrdiff_t>(y) * stride;
+            c.sc = sc;
+            c.dw = dw;
+            c.dh = dh;
+            c.step = step;
+            c.xEnd = xEnd;
+            c.yEnd = yEnd;
+            c.boxW = static_cast<int>(ww);
+            c.boxH = static_cast<int>(wh);
+            c.y = 0;
+            c.x = 0;
+            c.inScale = true;
+            return true;
+        }
+    }
+
+    // The scan of cv::CascadeClassifier::detectMultiScaleNoGrouping from the cursor on, over
+    // `gray` (the frame of this call), evaluating at most `budget` windows. A window is skipped
+    // (not counted) when its centre lies in an `exclude` box or, with a mask, its mask fraction
+    // is below minFraction. A scale is shrunk from `gray` only when one of its windows is
+    // evaluated in this call. With firstHit, stops after the first window that passes.
+    Stop run(const ConstImageView& gray, const IntegralImage* mask, float minFraction,
+             std::span<const Rect> exclude, bool firstHit, long budget) noexcept
+    {
+        Cursor& c = cursor;
+        windows = 0;
+        const int imgW = gray.width;
+        const int imgH = gray.height;
+        const Size maskSize = mask != nullptr ? mask->size() : Size{};
+        bool prepared = false;  // the cursor's scale is shrunk from this call's frame
+        for (;;) {
+            if (!c.inScale) {
+                if (!enterNextScale()) {
+                    c.active = false;
+                    return Stop::Done;
+                }
+                prepared = false;
+            }
+            const float sc = c.sc;
+            const int step = c.step;
+            const int boxW = c.boxW;
+            const int boxH = c.boxH;
+            const int stepShift = step == 2 ? 1 : 0;  // x / step without a division
+            for (; c.y < c.yEnd; c.y += step, c.x = 0) {
+                const int y = c.y;
                 const int by = static_cast<int>(std::lrint(static_cast<float>(y) * sc));
-                for (int x = 0; x < xEnd; x += step) {
-                    const int bx = static_cast<int>(std::lrint(static_cast<float>(x) * sc));
-                    if (mode == Mode::Masked) {
+                // The windows of the row (from the cursor on) that the mask and the exclusions
+                // let through.
+                const int j0 = c.x >> stepShift;
+                const int j1 = (c.xEnd + step - 1) / step;
+                int wanted = 0;
+                const bool everyWindow = exclude.empty() && mask == nullptr;
+                for (int j = j0; j < j1 && everyWindow; ++j)
+                    rowWanted[static_cast<std::size_t>(j)] = 1;
+                if (everyWindow)
+                    wanted = j1 - j0;
+                for (int j = j0; j < j1 && !everyWindow; ++j) {
+                    const int bx = static_cast<int>(std::lrint(static_cast<float>(j * step) * sc));
+                    bool ok = true;
+                    if (!exclude.empty()) {
                         const int cx = bx + boxW / 2;
                         const int cy = by + boxH / 2;
-                        bool excluded = false;
                         for (const Rect& e : exclude) {
                             if (cx >= e.x && cx < e.x + e.width && cy >= e.y &&
                                 cy < e.y + e.height) {
-                                excluded = true;
+                                ok = false;
                                 break;
                             }
                         }
-                        if (excluded)
-                            continue;
+                    }
+                    if (ok && mask != nullptr) {
                         const int mx0 = bx * maskSize.width / imgW;
                         const int my0 = by * maskSize.height / imgH;
                         const int mx1 = ((bx + boxW) * maskSize.width + imgW - 1) / imgW;
                         const int my1 = ((by + boxH) * maskSize.height + imgH - 1) / imgH;
-                        if (mask->maskFraction({mx0, my0, mx1 - mx0, my1 - my0}) < minFraction) {
-                            continue;
-                        }
+                        ok = mask->maskFraction({mx0, my0, mx1 - mx0, my1 - my0}) >= minFraction;
                     }
+                    rowWanted[static_cast<std::size_t>(j)] = ok;
+                    wanted += ok;
+                }
+                if (wanted == 0)
+                    continue;
+                if (windows >= budget)
+                    return Stop::Budget;  // resumes at this row's first window to evaluate
+                if (!prepared) {
+                    prepare(gray, c.dw, c.dh, rowPrefilter && step == 2);
+                    prepared = true;
+                }
+                const int done = rowPrefilter && wanted >= kPrefilterMinWindows
+                                     ? prefilterRow(y, step, j0, j1)
+                                     : 0;
+                for (; c.x < c.xEnd; c.x += step) {
+                    const int x = c.x;
+                    const auto j = static_cast<std::size_t>(x >> stepShift);
+                    if (!rowWanted[j])
+                        continue;
+                    if (windows >= budget)
+                        return Stop::Budget;  // resumes at this window
                     ++windows;
-                    const int result = runAt(prow + x, qrow + x);
+                    const std::ptrdiff_t at = static_cast<std::ptrdiff_t>(y) * stride + x;
+                    // After the prefilter: decided (<= 0), alive after `done` stages (1), or
+                    // parked at an undecidable stage sum (2).
+                    const int pre = done > 0 ? rowResult[j] : 1;
+                    const int result = pre <= 0 ? pre
+                                                : runAt(sum.data() + at, sqsum.data() + at,
+                                                        pre == 1 ? done : rowFrom[j]);
                     if (result > 0) {
+                        const int bx = static_cast<int>(std::lrint(static_cast<float>(x) * sc));
                         if (rawCount < static_cast<int>(raw.size())) {
                             raw[static_cast<std::size_t>(rawCount++)] = {bx, by, boxW, boxH};
                         } else {
                             rawOverflow = true;
                         }
-                        if (mode == Mode::First)
-                            return true;
+                        if (firstHit) {
+                            c.x += step;
+                            return Stop::FirstHit;
+                        }
                     }
                     if (result == 0)
-                        x += step;  // OpenCV skips past a first-stage rejection
+                        c.x += step;  // OpenCV skips past a first-stage rejection
                 }
             }
+            c.inScale = false;
         }
-        return false;
+    }
+
+    // A whole scan in one call (detect, detectMasked, detectFirst).
+    Stop scanWhole(const ConstImageView& gray, const IntegralImage* mask, float minFraction,
+                   std::span<const Rect> exclude, bool firstHit) noexcept
+    {
+        startScan(gray.size());
+        const Stop stop =
+            run(gray, mask, minFraction, exclude, firstHit, std::numeric_limits<long>::max());
+        cursor.active = false;
+        return stop;
     }
 
     int group(std::span<const Rect> rects, int minNeighbors, double eps,
@@ -573,6 +964,7 @@ FaceDetector::FaceDetector(const HaarCascade& cascade, const FaceDetectorOptions
 
     std::vector<FixedFeature> features;
     features.reserve(cascade.features.size());
+    bool floatExact = true;
     for (const HaarFeature& f : cascade.features) {
         features.push_back(d.fixFeature(f));
         // |f * K| must fit: K <= 2^48 / (10 * area) for windows that are not flat.
@@ -584,6 +976,8 @@ FaceDetector::FaceDetector(const HaarCascade& cascade, const FaceDetectorOptions
         if (bound * std::ldexp(1.0, kNormShift) / (10.0 * d.normArea) > std::ldexp(1.0, 62)) {
             throw std::runtime_error("face detector: feature range too large for fixed point");
         }
+        // The row prefilter converts feature sums to float: exact below 2^24.
+        floatExact = floatExact && bound < 16777216.0;
     }
 
     for (const HaarStage& s : cascade.stages) {
@@ -602,7 +996,7 @@ FaceDetector::FaceDetector(const HaarCascade& cascade, const FaceDetectorOptions
                     cascade.leaves[static_cast<std::size_t>(w.firstLeaf - n.right)];
                 d.stumpList.push_back({features[static_cast<std::size_t>(n.featureIndex)],
                                        nodeThreshold(n.threshold), leafFixed(leftLeaf),
-                                       leafFixed(rightLeaf), 0, 0});
+                                       leafFixed(rightLeaf), 0, 0, n.featureIndex, n.threshold});
             }
         }
         if (d.stumps) {
@@ -637,7 +1031,8 @@ FaceDetector::FaceDetector(const HaarCascade& cascade, const FaceDetectorOptions
         }
         for (const HaarNode& n : cascade.nodes) {
             d.nodes.push_back({features[static_cast<std::size_t>(n.featureIndex)],
-                               nodeThreshold(n.threshold), n.left, n.right});
+                               nodeThreshold(n.threshold), n.left, n.right, n.featureIndex,
+                               n.threshold});
         }
         for (const float leaf : cascade.leaves)
             d.leaves.push_back(leafFixed(leaf));
@@ -682,9 +1077,52 @@ FaceDetector::FaceDetector(const HaarCascade& cascade, const FaceDetectorOptions
 
     const auto maxW = static_cast<std::size_t>(options.maxFrameSize.width);
     const auto maxH = static_cast<std::size_t>(options.maxFrameSize.height);
+    if (options.rowPrefilter && floatExact && d.stumps) {
+        for (const Stump& st : d.stumpList) {
+            d.rowStumps.push_back(
+                {d.rowFeature(cascade.features[static_cast<std::size_t>(st.featureIndex)]),
+                 st.fileThreshold, rowLeaf(st.left), rowLeaf(st.right)});
+        }
+        d.rowPrefilter = true;
+    } else if (options.rowPrefilter && floatExact && d.twoNodeTrees) {
+        for (const FixedWeak& w : d.weak) {
+            const TreeNode& n0 = d.nodes[static_cast<std::size_t>(w.firstNode)];
+            const TreeNode& n1 = d.nodes[static_cast<std::size_t>(w.firstNode + 1)];
+            auto leaf = [&](int child) {
+                return rowLeaf(d.leaves[static_cast<std::size_t>(w.firstLeaf - child)]);
+            };
+            RowTree t{};
+            t.feature0 = d.rowFeature(cascade.features[static_cast<std::size_t>(n0.featureIndex)]);
+            t.feature1 = d.rowFeature(cascade.features[static_cast<std::size_t>(n1.featureIndex)]);
+            t.threshold0 = n0.fileThreshold;
+            t.threshold1 = n1.fileThreshold;
+            t.node1OnBelow = n0.left > 0;
+            t.direct = leaf(n0.left > 0 ? n0.right : n0.left);
+            t.below1 = leaf(n1.left);
+            t.above1 = leaf(n1.right);
+            d.rowTrees.push_back(t);
+        }
+        d.rowPrefilter = true;
+    }
+
     d.scaled.assign(maxW * maxH, 0);
     d.sum.assign((maxW + 1) * (maxH + 1), 0);
     d.sqsum.assign((maxW + 1) * (maxH + 1), 0);
+    if (d.rowPrefilter)
+        d.sumSplit.assign((maxW + 1) * (maxH + 1), 0);
+    d.rowNorm.assign(maxW + 1, 0.0f);
+    d.rowAcc.assign(maxW + 1, 0);
+    d.rowResult.assign(maxW + 1, 0);
+    d.rowFrom.assign(maxW + 1, 0);
+    // The Q20 sum of n leaves is within n / 2 units of the exact sum.
+    for (FixedStage& st : d.stages) {
+        constexpr int shift = kLeafShift - kRowLeafShift;
+        const std::int64_t slack = std::int64_t{st.count} << (shift - 1);
+        auto ceilQ20 = [](std::int64_t v) { return -((-v) >> shift); };
+        st.rowReject = static_cast<std::int32_t>(ceilQ20(st.threshold - slack));
+        st.rowPass = static_cast<std::int32_t>(ceilQ20(st.threshold + slack));
+    }
+    d.rowWanted.assign(maxW + 1, 0);
     for (auto* v : {&d.xofs0, &d.xofs1})
         v->assign(maxW, 0);
     for (auto* v : {&d.yofs0, &d.yofs1})
@@ -711,7 +1149,7 @@ int FaceDetector::detect(const ConstImageView& gray) noexcept
     Impl& d = *impl_;
     if (!d.checkImage(gray))
         return -1;
-    d.scan(gray, Impl::Mode::Full, nullptr, 0.0f, {});
+    d.scanWhole(gray, nullptr, 0.0f, {}, false);
     return d.finish(gray.size());
 }
 
@@ -725,8 +1163,42 @@ int FaceDetector::detectMasked(const ConstImageView& gray, const IntegralImage& 
         d.setError("face detector: empty mask integral image");
         return -1;
     }
-    d.scan(gray, Impl::Mode::Masked, &mask, minFraction, exclude);
+    d.scanWhole(gray, &mask, minFraction, exclude, false);
     return d.finish(gray.size());
+}
+
+bool FaceDetector::detectMaskedIncremental(const ConstImageView& gray, const IntegralImage* mask,
+                                           float minFraction, std::span<const Rect> exclude,
+                                           long windowBudget) noexcept
+{
+    Impl& d = *impl_;
+    d.windows = 0;
+    if (!d.checkImage(gray)) {
+        d.cursor.active = false;
+        return false;
+    }
+    if (mask != nullptr && (mask->size().width <= 0 || mask->size().height <= 0)) {
+        d.setError("face detector: empty mask integral image");
+        d.cursor.active = false;
+        return false;
+    }
+    if (!d.cursor.active || d.cursor.image != gray.size())
+        d.startScan(gray.size());
+    const long budget = windowBudget > 0 ? windowBudget : std::numeric_limits<long>::max();
+    if (d.run(gray, mask, minFraction, exclude, false, budget) != Impl::Stop::Done)
+        return false;
+    d.finish(gray.size());
+    return true;
+}
+
+void FaceDetector::resetIncremental() noexcept
+{
+    impl_->cursor.active = false;
+}
+
+bool FaceDetector::incrementalScanActive() const noexcept
+{
+    return impl_->cursor.active;
 }
 
 bool FaceDetector::detectFirst(const ConstImageView& gray, Rect& hit) noexcept
@@ -735,7 +1207,7 @@ bool FaceDetector::detectFirst(const ConstImageView& gray, Rect& hit) noexcept
     d.faceCount = 0;
     if (!d.checkImage(gray))
         return false;
-    if (!d.scan(gray, Impl::Mode::First, nullptr, 0.0f, {}))
+    if (d.scanWhole(gray, nullptr, 0.0f, {}, true) != Impl::Stop::FirstHit || d.rawCount == 0)
         return false;
     hit = d.raw[0];
     return true;

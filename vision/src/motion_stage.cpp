@@ -49,6 +49,8 @@ void MotionStage::process(FrameState& state) noexcept
         error_[0] = '\0';
     }
     integral_.compute(mask_.view());
+    if (ok_)
+        state.motionMask = mask_.view();
 }
 
 }  // namespace vision

@@ -5,7 +5,10 @@
 
 #include "vision/card_tracker.hpp"
 #include "vision/chromaticity.hpp"
+#include "vision/face_tracker.hpp"
 #include "vision/image.hpp"
+
+#include <span>
 
 namespace vision {
 
@@ -20,6 +23,11 @@ struct FrameState {
     ChromaticityPlanes chroma{};
     /// The colour card (ch. 4) when the card stage ran, null otherwise.
     const CardObservation* card = nullptr;
+    /// The motion stage's foreground mask (reduced resolution, 255 = moving), empty otherwise.
+    ConstImageView motionMask{};
+    /// Tracked faces (§3) in frame coordinates when the face stage ran (shown() ones are the
+    /// confirmed faces), empty otherwise. Valid until the next frame.
+    std::span<const TrackedFace> faces{};
 };
 
 class Stage {

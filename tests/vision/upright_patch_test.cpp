@@ -1,0 +1,164 @@
+// warpUpright: an exact copy at roll 0, a pattern rotated on screen comes back upright with its
+// roll (and not with the opposite one), border replication, bad arguments.
+#include "vision/upright_patch.hpp"
+
+#include "alloc_counter.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdint>
+#include <cstdlib>
+#include <random>
+#include <vector>
+
+using namespace vision;
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+// A smooth pattern without rotational symmetry, about (0, 0) in upright face coordinates.
+double pattern(double u, double v)
+{
+    return 128.0 + 50.0 * std::sin(u / 4.0) + 40.0 * std::cos(v / 6.0) + 0.8 * u - 0.3 * v;
+}
+
+// The pattern turned clockwise on screen (y down) by `degrees` about `centre`: the pixel at
+// offset d from the centre shows the upright pattern at R(-degrees) d.
+ImageBuffer rotatedScene(int w, int h, Point2f centre, double degrees)
+{
+    ImageBuffer img(w, h, PixelFormat::Gray8);
+    const double c = std::cos(degrees * kPi / 180.0);
+    const double s = std::sin(degrees * kPi / 180.0);
+    for (int y = 0; y < h; ++y) {
+        for (int x = 0; x < w; ++x) {
+            const double dx = x + 0.5 - centre.x;
+            const double dy = y + 0.5 - centre.y;
+            const double u = c * dx + s * dy;
+            const double v = -s * dx + c * dy;
+            img.view().row(y)[x] = static_cast<std::uint8_t>(std::lrint(pattern(u, v)));
+        }
+    }
+    return img;
+}
+
+// Mean |patch - upright pattern| over the patch (patch pixel = one source pixel).
+double meanErrorToUpright(const ImageBuffer& patch)
+{
+    const ConstImageView p = patch.view();
+    double sum = 0.0;
+    for (int v = 0; v < p.height; ++v) {
+        for (int u = 0; u < p.width; ++u) {
+            const double pu = u + 0.5 - p.width * 0.5;
+            const double pv = v + 0.5 - p.height * 0.5;
+            sum += std::fabs(p.row(v)[u] - std::lrint(pattern(pu, pv)));
+        }
+    }
+    return sum / (p.width * p.height);
+}
+
+TEST(UprightPatch, RollZeroIsAnExactCopy)
+{
+    ImageBuffer img(64, 48, PixelFormat::Gray8);
+    std::mt19937 rng(3);
+    for (int y = 0; y < 48; ++y) {
+        for (int x = 0; x < 64; ++x)
+            img.view().row(y)[x] = static_cast<std::uint8_t>(rng() & 255);
+    }
+    ImageBuffer patch(32, 32, PixelFormat::Gray8);
+    ASSERT_TRUE(warpUpright(img.view(), {32.f, 24.f}, 0.f, 32.f, patch.view()));
+    for (int v = 0; v < 32; ++v) {
+        for (int u = 0; u < 32; ++u)
+            ASSERT_EQ(patch.view().row(v)[u], img.view().row(8 + v)[16 + u]) << u << "," << v;
+    }
+}
+
+TEST(UprightPatch, HalfSizePatchAveragesNeighbours)
+{
+    // Side 32 into 16: each patch pixel samples midway between two columns and two rows.
+    ImageBuffer img(64, 48, PixelFormat::Gray8);
+    for (int y = 0; y < 48; ++y) {
+        for (int x = 0; x < 64; ++x)
+            img.view().row(y)[x] = static_cast<std::uint8_t>(x * 2 + y);
+    }
+    ImageBuffer patch(16, 16, PixelFormat::Gray8);
+    ASSERT_TRUE(warpUpright(img.view(), {32.f, 24.f}, 0.f, 32.f, patch.view()));
+    // Patch pixel (u, v) is at source (16.5 + 2u, 8.5 + 2v) in pixel-centre coordinates.
+    for (int v = 0; v < 16; ++v) {
+        for (int u = 0; u < 16; ++u) {
+            const double expected = (16.5 + 2 * u) * 2 + (8.5 + 2 * v);
+            EXPECT_NEAR(patch.view().row(v)[u], expected, 0.51) << u << "," << v;
+        }
+    }
+}
+
+TEST(UprightPatch, RotatedPatternComesBackUpright)
+{
+    const Point2f centre{80.3f, 61.7f};
+    for (const double roll : {-30.0, -12.5, 7.0, 25.0, 35.0}) {
+        const ImageBuffer scene = rotatedScene(160, 120, centre, roll);
+        ImageBuffer patch(40, 40, PixelFormat::Gray8);
+        ASSERT_TRUE(
+            warpUpright(scene.view(), centre, static_cast<float>(roll), 40.f, patch.view()));
+        EXPECT_LT(meanErrorToUpright(patch), 1.5) << roll;
+        // The opposite sense (or no warp) does not straighten it.
+        ASSERT_TRUE(
+            warpUpright(scene.view(), centre, static_cast<float>(-roll), 40.f, patch.view()));
+        EXPECT_GT(meanErrorToUpright(patch), 5.0) << roll;
+    }
+}
+
+TEST(UprightPatch, OutsidePixelsRepeatTheBorder)
+{
+    ImageBuffer img(20, 10, PixelFormat::Gray8);
+    for (int y = 0; y < 10; ++y) {
+        for (int x = 0; x < 20; ++x)
+            img.view().row(y)[x] = static_cast<std::uint8_t>(10 * x + y);
+    }
+    ImageBuffer patch(8, 8, PixelFormat::Gray8);
+    // Centred on the top-left corner: the upper-left quarter of the patch is pixel (0, 0).
+    ASSERT_TRUE(warpUpright(img.view(), {0.f, 0.f}, 0.f, 8.f, patch.view()));
+    for (int v = 0; v < 4; ++v) {
+        for (int u = 0; u < 4; ++u)
+            EXPECT_EQ(patch.view().row(v)[u], 0);
+    }
+    EXPECT_EQ(patch.view().row(7)[7], img.view().row(3)[3]);
+    EXPECT_EQ(patch.view().row(0)[7], img.view().row(0)[3]);
+    // Far to the right: the right column repeated (rotated too: only its values, 190..199).
+    ASSERT_TRUE(warpUpright(img.view(), {500.f, 4.f}, 0.f, 8.f, patch.view()));
+    EXPECT_EQ(patch.view().row(4)[4], img.view().row(4)[19]);
+    ASSERT_TRUE(warpUpright(img.view(), {500.f, 5.f}, 20.f, 8.f, patch.view()));
+    for (int v = 0; v < 8; ++v) {
+        for (int u = 0; u < 8; ++u)
+            EXPECT_GE(patch.view().row(v)[u], 190);
+    }
+}
+
+TEST(UprightPatch, RejectsBadArgumentsWithoutTouchingThePatch)
+{
+    ImageBuffer img(20, 10, PixelFormat::Gray8);
+    ImageBuffer rgb(20, 10, PixelFormat::RGB24);
+    ImageBuffer patch(8, 8, PixelFormat::Gray8);
+    patch.view().row(0)[0] = 77;
+    EXPECT_FALSE(warpUpright(rgb.view(), {5.f, 5.f}, 0.f, 8.f, patch.view()));
+    EXPECT_FALSE(warpUpright(img.view(), {5.f, 5.f}, 0.f, 0.f, patch.view()));
+    EXPECT_FALSE(warpUpright(img.view(), {5.f, 5.f}, NAN, 8.f, patch.view()));
+    EXPECT_FALSE(warpUpright(img.view(), {1e9f, 5.f}, 0.f, 8.f, patch.view()));
+    EXPECT_FALSE(warpUpright(img.view(), {5.f, 5.f}, 0.f, 8.f, rgb.view()));
+    EXPECT_EQ(patch.view().row(0)[0], 77);
+}
+
+TEST(UprightPatch, NoHeapAllocation)
+{
+    if (!testing_support::allocationCountingAvailable())
+        GTEST_SKIP() << "allocation counting unavailable";
+    const ImageBuffer scene = rotatedScene(160, 120, {80.f, 60.f}, 15.0);
+    ImageBuffer patch(48, 48, PixelFormat::Gray8);
+    testing_support::AllocationScope scope;
+    EXPECT_TRUE(warpUpright(scene.view(), {80.f, 60.f}, 15.f, 60.f, patch.view()));
+    EXPECT_EQ(scope.counts().cxxNew, 0);
+    EXPECT_EQ(scope.counts().ownMalloc, 0);
+}
+
+}  // namespace

@@ -1,0 +1,24 @@
+#pragma once
+// Roll-warped verification patches (METHOD.md §3, "Integration"; dissertation fig. 89): a track
+// that the detector did not find this frame is verified by warping its face upright by the
+// tracked roll into a small patch and running first-hit detection on it.
+
+#include "vision/geometry.hpp"
+#include "vision/image.hpp"
+
+namespace vision {
+
+/// Samples the square of side `sourceSide` (pixels of `gray`) centred on `centre`, rotated by
+/// `rollDegrees`, into the whole of `patch` (Gray8, any size, need not be square), so that a face
+/// with that roll comes out upright. Roll has the sense of TrackedFace::rollDegrees and
+/// RollEstimate: positive turns the face clockwise on screen (y down), and patch offset (u, v)
+/// from the patch centre reads the image at centre + R(roll) (u, v) * sourceSide / patch size.
+/// Coordinates are continuous (pixel i covers [i, i + 1), as a box's centre x + width / 2), so
+/// with roll 0 and sourceSide equal to the patch size around a whole-pixel centre it is an exact
+/// copy. Bilinear in fixed point (positions Q16, weights 8 bits), pixels outside the image repeat
+/// its border. Returns false (patch untouched) on a format mismatch, a non-positive or
+/// non-finite side, or a square reaching beyond 16384 pixels from the image.
+bool warpUpright(const ConstImageView& gray, Point2f centre, float rollDegrees, float sourceSide,
+                 ImageView patch) noexcept;
+
+}  // namespace vision

@@ -1,0 +1,670 @@
+#include "vision/face_tracker.hpp"
+
+#include "vision/corner_detector.hpp"
+#include "vision/image_pyramid.hpp"
+#include "vision/roll_estimator.hpp"
+#include "vision/upright_patch.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <stdexcept>
+#include <vector>
+
+namespace vision {
+
+namespace {
+
+constexpr int kMaxPoints = 64;  ///< corners kept per track
+constexpr int kMaxRecent = 16;  ///< dropped-face areas remembered for the scan mask
+constexpr int kMaxTracks = 32;  ///< hard cap on options.maxFaces
+constexpr float kRadToDeg = 57.29577951308232f;
+/// The verification patch shows the face box enlarged by this factor: the detector's window
+/// must fit around the face at a few scales.
+constexpr float kVerifyContext = 1.6f;
+
+struct Track {
+    TrackedFace face;
+    std::array<Point2f, kMaxPoints> points{};
+    int pointCount = 0;
+    int lastMotionFrame = 0;  ///< frame index of the last frame the face showed it moves
+    Point2f anchor{};         ///< `travel` when the face last moved
+    /// How far the image content of the face has moved since the track began: the sum of the
+    /// motion model's shifts of the centre (tracking modes), or of the centre itself (detector
+    /// only). Re-anchoring the box on a detection is not motion and does not count.
+    Point2f travel{};
+    int verifiedSinceAnchor = 0;
+    bool detectedThisFrame = false;
+};
+
+struct RecentArea {
+    Rect box;
+    int expires = 0;  ///< frame index after which the area is forgotten
+};
+
+float iou(Rect a, Rect b) noexcept
+{
+    const int x0 = std::max(a.x, b.x);
+    const int y0 = std::max(a.y, b.y);
+    const int x1 = std::min(a.x + a.width, b.x + b.width);
+    const int y1 = std::min(a.y + a.height, b.y + b.height);
+    if (x1 <= x0 || y1 <= y0)
+        return 0.f;
+    const float inter = static_cast<float>(x1 - x0) * static_cast<float>(y1 - y0);
+    const float uni = static_cast<float>(a.width) * static_cast<float>(a.height) +
+                      static_cast<float>(b.width) * static_cast<float>(b.height) - inter;
+    return uni > 0.f ? inter / uni : 0.f;
+}
+
+Rect clip(Rect r, Size s) noexcept
+{
+    const int x0 = std::clamp(r.x, 0, s.width);
+    const int y0 = std::clamp(r.y, 0, s.height);
+    const int x1 = std::clamp(r.x + r.width, 0, s.width);
+    const int y1 = std::clamp(r.y + r.height, 0, s.height);
+    return {x0, y0, x1 - x0, y1 - y0};
+}
+
+MotionKind fitKind(FaceTrackingMode mode) noexcept
+{
+    switch (mode) {
+        case FaceTrackingMode::Affine:
+            return MotionKind::Affine;
+        case FaceTrackingMode::Similarity:
+            return MotionKind::Similarity;
+        default:
+            return MotionKind::Translation;
+    }
+}
+
+FaceDetectorOptions scanOptions(const FaceTrackerOptions& o)
+{
+    FaceDetectorOptions d = o.detector;
+    d.maxFrameSize = o.imageSize;
+    return d;
+}
+
+FaceDetectorOptions verifyOptions(const FaceTrackerOptions& o, Size window)
+{
+    // The face fills about 1 / kVerifyContext of the patch; scan from the smallest window up to
+    // the whole patch with the scan's scale factor.
+    FaceDetectorOptions d;
+    d.maxFrameSize = {o.verifyPatchSize, o.verifyPatchSize};
+    d.scaleFactor = o.detector.scaleFactor;
+    d.minNeighbors = 1;
+    d.minSize = window;
+    d.maxSize = {o.verifyPatchSize, o.verifyPatchSize};
+    d.maxRawHits = 1024;
+    d.maxFaces = 16;
+    return d;
+}
+
+void validate(const FaceTrackerOptions& o)
+{
+    if (o.imageSize.width < 24 || o.imageSize.height < 24)
+        throw std::runtime_error("FaceTracker: working image must be at least 24x24");
+    if (o.maxFaces < 1 || o.maxFaces > kMaxTracks)
+        throw std::runtime_error("FaceTracker: maxFaces must be 1..32");
+    if (o.confirmFrames < 1 || o.graceFrames < 0)
+        throw std::runtime_error("FaceTracker: confirmFrames must be >= 1 and graceFrames >= 0");
+    if (o.maxCornersPerFace < 4 || o.maxCornersPerFace > kMaxPoints)
+        throw std::runtime_error("FaceTracker: maxCornersPerFace must be 4..64");
+    if (o.minCornersPerFace < 3 || o.minCornersPerFace > o.maxCornersPerFace)
+        throw std::runtime_error("FaceTracker: minCornersPerFace must be 3..maxCornersPerFace");
+    if (o.verifyPatchSize < 32 || o.verifyPatchSize > 256)
+        throw std::runtime_error("FaceTracker: verifyPatchSize must be 32..256");
+    if (!(o.minMaskFraction >= 0.f && o.minMaskFraction <= 1.f))
+        throw std::runtime_error("FaceTracker: minMaskFraction must be 0..1");
+}
+
+}  // namespace
+
+struct FaceTracker::Impl {
+    explicit Impl(const HaarCascade& cascade, const FaceTrackerOptions& o)
+        : options(o),
+          scan(cascade, scanOptions(o)),
+          verify(cascade, verifyOptions(o, {cascade.windowWidth, cascade.windowHeight})),
+          corners(o.imageSize, CornerDetectorOptions{kMaxPoints, 0.01f, 5.f, 3}),
+          flow(o.flow),
+          pyramids{ImagePyramid(o.imageSize, o.flow.maxLevel + 1),
+                   ImagePyramid(o.imageSize, o.flow.maxLevel + 1)},
+          grays{ImageBuffer(o.imageSize.width, o.imageSize.height, PixelFormat::Gray8),
+                ImageBuffer(o.imageSize.width, o.imageSize.height, PixelFormat::Gray8)},
+          scanMask(o.imageSize.width, o.imageSize.height, PixelFormat::Gray8),
+          scanMaskIntegral(o.imageSize),
+          motionIntegral(o.imageSize),
+          patch(o.verifyPatchSize, o.verifyPatchSize, PixelFormat::Gray8)
+    {
+        options.detector.maxFrameSize = o.imageSize;
+        options.fit.kind = fitKind(o.mode);
+        tracks.resize(static_cast<std::size_t>(o.maxFaces));
+        outFaces.resize(static_cast<std::size_t>(o.maxFaces));
+        outDetections.resize(static_cast<std::size_t>(std::max(1, o.detector.maxFaces)));
+        excluded.resize(static_cast<std::size_t>(o.maxFaces));
+        std::memset(scanMask.view().data, 0, scanMask.bytes());
+        scanMaskIntegral.compute(scanMask.view());
+    }
+
+    bool process(const ConstImageView& gray, const ConstImageView& mask) noexcept;
+    void trackPoints(Track& t) noexcept;
+    void findCorners(Track& t, bool replenish) noexcept;
+    void startTrack(Rect box) noexcept;
+    bool verifyTrack(Track& t) noexcept;
+    void prepareScanMask(const ConstImageView& mask) noexcept;
+    float motionFraction(Rect box) const noexcept;
+    void drop(int index) noexcept;
+    void publish() noexcept;
+
+    FaceTrackerOptions options;
+    FaceDetector scan;
+    FaceDetector verify;
+    CornerDetector corners;
+    PyramidalLucasKanade flow;
+    ImagePyramid pyramids[2];
+    ImageBuffer grays[2];
+    int current = 0;  ///< index of this frame's gray / pyramid
+    bool havePrevious = false;
+    ImageBuffer scanMask;
+    IntegralImage scanMaskIntegral;
+    IntegralImage motionIntegral;
+    bool haveMotion = false;
+    ImageBuffer patch;
+
+    std::vector<Track> tracks;  ///< [0, trackCount) live, oldest first
+    int trackCount = 0;
+    int nextId = 1;
+    int frameIndex = 0;
+    std::array<RecentArea, kMaxRecent> recent{};
+
+    std::vector<TrackedFace> outFaces;
+    std::vector<Rect> outDetections;
+    int detectionCount = 0;
+    std::vector<Rect> excluded;
+    bool scanDone = false;
+    long windows = 0;
+
+    // Per-track flow scratch.
+    std::array<Point2f, kMaxPoints> next{};
+    std::array<FlowStatus, kMaxPoints> status{};
+    std::array<Point2f, kMaxPoints> from{};
+    std::array<Point2f, kMaxPoints> to{};
+    std::array<std::uint8_t, kMaxPoints> inliers{};
+    std::array<Corner, kMaxPoints> found{};
+    std::array<Point2f, kMaxPoints> rollPoints{};
+    char error[96] = "";
+};
+
+float FaceTracker::Impl::motionFraction(Rect box) const noexcept
+{
+    if (!haveMotion)
+        return 1.f;
+    // The inner half of the box: a head moving past a still face (a poster, a photo on the wall)
+    // sweeps the edges of its box far more than its middle.
+    const Rect inner{box.x + box.width / 4, box.y + box.height / 4, box.width / 2, box.height / 2};
+    const Rect r = clip(inner, options.imageSize);
+    if (r.width <= 0 || r.height <= 0)
+        return 0.f;
+    const std::uint32_t s = motionIntegral.sum(r.x, r.y, r.x + r.width, r.y + r.height);
+    return static_cast<float>(s) /
+           (255.f * static_cast<float>(r.width) * static_cast<float>(r.height));
+}
+
+void FaceTracker::Impl::prepareScanMask(const ConstImageView& mask) noexcept
+{
+    // 3 "Detection": scan where there is motion, or where a face was seen recently (a face that
+    // stops moving for a moment must still be found again).
+    const Size s = options.imageSize;
+    for (int y = 0; y < s.height; ++y)
+        std::memcpy(scanMask.view().row(y), mask.row(y), static_cast<std::size_t>(s.width));
+    for (RecentArea& a : recent) {
+        if (a.expires < frameIndex || a.box.width <= 0)
+            continue;
+        const Rect r = clip(a.box, s);
+        for (int y = r.y; y < r.y + r.height; ++y)
+            std::memset(scanMask.view().row(y) + r.x, 255, static_cast<std::size_t>(r.width));
+    }
+    scanMaskIntegral.compute(scanMask.view());
+}
+
+void FaceTracker::Impl::findCorners(Track& t, bool replenish) noexcept
+{
+    // 3 "Tracking": Shi-Tomasi corners in the face box, spaced in proportion to the face size.
+    const float minDistance = std::max(2.f, t.face.size * options.cornerMinDistanceFraction);
+    corners.setMinDistance(minDistance);
+    corners.setMaxCorners(options.maxCornersPerFace);
+    // The inner part of the box: the box corners are often background or hair, which do not
+    // move with the face.
+    const float inner = t.face.size * 0.7f;
+    const Rect area{static_cast<int>(t.face.centre.x - inner * 0.5f),
+                    static_cast<int>(t.face.centre.y - inner * 0.5f), static_cast<int>(inner),
+                    static_cast<int>(inner)};
+    const int n = corners.detect(grays[current].view(), area, found.data(), kMaxPoints);
+    if (!replenish)
+        t.pointCount = 0;
+    const float minSq = minDistance * minDistance;
+    for (int i = 0; i < n && t.pointCount < options.maxCornersPerFace; ++i) {
+        const Point2f p = found[static_cast<std::size_t>(i)].position;
+        bool nearExisting = false;
+        for (int k = 0; k < t.pointCount && !nearExisting; ++k) {
+            const float dx = t.points[static_cast<std::size_t>(k)].x - p.x;
+            const float dy = t.points[static_cast<std::size_t>(k)].y - p.y;
+            nearExisting = dx * dx + dy * dy < minSq;
+        }
+        if (!nearExisting)
+            t.points[static_cast<std::size_t>(t.pointCount++)] = p;
+    }
+}
+
+void FaceTracker::Impl::trackPoints(Track& t) noexcept
+{
+    const ImagePyramid& prev = pyramids[1 - current];
+    const ImagePyramid& cur = pyramids[current];
+    const int n = t.pointCount;
+    if (n == 0)
+        return;
+    flow.track(prev, cur, t.points.data(), next.data(), status.data(), n);
+    int m = 0;
+    for (int i = 0; i < n; ++i) {
+        if (status[static_cast<std::size_t>(i)] != FlowStatus::Tracked)
+            continue;
+        from[static_cast<std::size_t>(m)] = t.points[static_cast<std::size_t>(i)];
+        to[static_cast<std::size_t>(m)] = next[static_cast<std::size_t>(i)];
+        ++m;
+    }
+    const int minimum = options.mode == FaceTrackingMode::Affine ? 4 : 3;
+    MotionModel model;
+    const int in = m >= minimum ? fitMotionRobust(from.data(), to.data(), m, t.face.centre,
+                                                  options.fit, model, inliers.data())
+                                : 0;
+    const float survived = n > 0 ? static_cast<float>(in) / static_cast<float>(n) : 0.f;
+    if (in < minimum) {
+        // Nothing reliable moved: keep the box where it was, start the corners afresh.
+        t.pointCount = 0;
+        t.face.confidence *= 0.5f;
+        return;
+    }
+    const Point2f moved = model.apply(t.face.centre);
+    t.travel.x += moved.x - t.face.centre.x;
+    t.travel.y += moved.y - t.face.centre.y;
+    t.face.centre = moved;
+    if (options.mode != FaceTrackingMode::Translation) {
+        // Scale and roll of the similarity part (METHOD §3: th = atan2(a2, a1)).
+        // A face does not change size by more than a few percent between frames; larger fitted
+        // scales come from corners on the background or hair.
+        const float s = std::clamp(model.scale(), 0.95f, 1.05f);
+        t.face.size *= s;
+        t.face.rollDegrees += model.roll() * kRadToDeg;
+        t.face.rollDegrees = std::clamp(t.face.rollDegrees, -60.f, 60.f);
+    }
+    int k = 0;
+    for (int i = 0; i < m; ++i)
+        if (inliers[static_cast<std::size_t>(i)])
+            t.points[static_cast<std::size_t>(k++)] = to[static_cast<std::size_t>(i)];
+    t.pointCount = k;
+    t.face.confidence = std::min(1.f, survived);
+}
+
+bool FaceTracker::Impl::verifyTrack(Track& t) noexcept
+{
+    // Fig. 89: a track with no detection is verified by warping its face upright by the tracked
+    // roll into a small patch and running first-hit detection on it.
+    const float roll = options.mode == FaceTrackingMode::Translation ? 0.f : t.face.rollDegrees;
+    const float side = t.face.size * kVerifyContext;
+    if (!warpUpright(grays[current].view(), t.face.centre, roll, side, patch.view()))
+        return false;
+    const bool reanchor =
+        options.reanchorEvery > 0 && t.verifiedSinceAnchor + 1 >= options.reanchorEvery;
+    if (!reanchor) {
+        Rect hit;
+        const bool ok = verify.detectFirst(patch.view(), hit);
+        windows += verify.windowsEvaluated();
+        if (ok)
+            ++t.verifiedSinceAnchor;
+        return ok;
+    }
+    // Grouped scan of the patch: the best group near the patch centre re-centres and re-sizes
+    // the track (first hits say only "a face is here", not where exactly).
+    const int n = verify.detect(patch.view());
+    windows += verify.windowsEvaluated();
+    if (n <= 0)
+        return false;
+    const float half = static_cast<float>(options.verifyPatchSize) * 0.5f;
+    const float unit = side / static_cast<float>(options.verifyPatchSize);
+    const std::span<const Rect> boxes = verify.faces();
+    int best = -1;
+    float bestDistance = 1e9f;
+    for (int i = 0; i < n; ++i) {
+        const Rect& b = boxes[static_cast<std::size_t>(i)];
+        const float dx = static_cast<float>(b.x) + static_cast<float>(b.width) * 0.5f - half;
+        const float dy = static_cast<float>(b.y) + static_cast<float>(b.height) * 0.5f - half;
+        const float d = dx * dx + dy * dy;
+        if (d < bestDistance) {
+            bestDistance = d;
+            best = i;
+        }
+    }
+    const Rect& b = boxes[static_cast<std::size_t>(best)];
+    const float size = static_cast<float>(b.width) * unit;
+    if (size < t.face.size * 0.6f || size > t.face.size * 1.6f)
+        return true;  // a face is there, but this box is not a sensible measure of it
+    // Patch offset back to the image: rotate by the roll used for warping.
+    const float px = (static_cast<float>(b.x) + static_cast<float>(b.width) * 0.5f - half) * unit;
+    const float py = (static_cast<float>(b.y) + static_cast<float>(b.height) * 0.5f - half) * unit;
+    const float c = std::cos(roll / kRadToDeg);
+    const float s = std::sin(roll / kRadToDeg);
+    t.face.centre.x += 0.8f * (c * px - s * py);
+    t.face.centre.y += 0.8f * (s * px + c * py);
+    t.face.size += 0.8f * (size - t.face.size);
+    t.verifiedSinceAnchor = 0;
+    return true;
+}
+
+void FaceTracker::Impl::startTrack(Rect box) noexcept
+{
+    if (trackCount >= options.maxFaces)
+        return;
+    Track& t = tracks[static_cast<std::size_t>(trackCount)];
+    t = Track{};
+    t.face.id = nextId++;
+    if (nextId <= 0)  // wrapped after 2^31 faces
+        nextId = 1;
+    t.face.centre = {static_cast<float>(box.x) + static_cast<float>(box.width) * 0.5f,
+                     static_cast<float>(box.y) + static_cast<float>(box.height) * 0.5f};
+    t.face.size = static_cast<float>(std::max(box.width, box.height));
+    t.face.hits = 1;
+    t.face.state = options.confirmFrames <= 1 ? FaceState::Confirmed : FaceState::Tentative;
+    t.face.confidence = 1.f / static_cast<float>(options.confirmFrames);
+    // A face found still is not shown until it moves; it is dropped if it never does.
+    t.lastMotionFrame = motionFraction(box) >= options.minFaceMotionFraction
+                            ? frameIndex
+                            : frameIndex - options.confirmMotionFrames - 1;
+    if (t.face.state == FaceState::Confirmed && t.lastMotionFrame != frameIndex)
+        t.face.state = FaceState::Tentative;
+    t.detectedThisFrame = true;
+    if (options.mode != FaceTrackingMode::None)
+        findCorners(t, false);
+    if (options.initialRollBySymmetry && (options.mode == FaceTrackingMode::Similarity ||
+                                          options.mode == FaceTrackingMode::Affine)) {
+        // §4: initial roll by point symmetry of the box's corners.
+        const int n = std::min(t.pointCount, kMaxPoints);
+        for (int i = 0; i < n; ++i)
+            rollPoints[static_cast<std::size_t>(i)] = t.points[static_cast<std::size_t>(i)];
+        const RollEstimate r = estimateRollBySymmetry(
+            std::span<const Point2f>(rollPoints.data(), static_cast<std::size_t>(n)), t.face.centre,
+            t.face.size);
+        if (r.confidence > 0.f)
+            t.face.rollDegrees = r.rollDegrees;
+    }
+    ++trackCount;
+}
+
+void FaceTracker::Impl::drop(int index) noexcept
+{
+    const Track& t = tracks[static_cast<std::size_t>(index)];
+    if (t.face.state != FaceState::Tentative) {
+        // Remember where a face was, so it is scanned for again even if it stands still.
+        RecentArea* slot = &recent[0];
+        for (RecentArea& a : recent)
+            if (a.expires < slot->expires)
+                slot = &a;
+        slot->box = t.face.box();
+        slot->expires = frameIndex + options.recentFaceFrames;
+    }
+    for (int i = index; i + 1 < trackCount; ++i)
+        tracks[static_cast<std::size_t>(i)] = tracks[static_cast<std::size_t>(i + 1)];
+    --trackCount;
+}
+
+bool FaceTracker::Impl::process(const ConstImageView& gray, const ConstImageView& mask) noexcept
+{
+    const Size s = options.imageSize;
+    if (gray.format != PixelFormat::Gray8 || gray.width != s.width || gray.height != s.height ||
+        gray.data == nullptr) {
+        std::snprintf(error, sizeof error, "faces: expected a %dx%d Gray8 image, got %dx%d %s",
+                      s.width, s.height, gray.width, gray.height, pixelFormatName(gray.format));
+        return false;
+    }
+    const bool maskGiven = mask.data != nullptr && mask.width > 0;
+    if (maskGiven &&
+        (mask.format != PixelFormat::Gray8 || mask.width != s.width || mask.height != s.height)) {
+        std::snprintf(error, sizeof error, "faces: expected a %dx%d Gray8 mask, got %dx%d %s",
+                      s.width, s.height, mask.width, mask.height, pixelFormatName(mask.format));
+        return false;
+    }
+    error[0] = '\0';
+    ++frameIndex;
+    windows = 0;
+    scanDone = false;
+
+    // This frame's grey copy (the caller's buffer changes under us) and pyramid.
+    current = 1 - current;
+    for (int y = 0; y < s.height; ++y)
+        std::memcpy(grays[current].view().row(y), gray.row(y), static_cast<std::size_t>(s.width));
+    pyramids[current].build(grays[current].view());
+    haveMotion = maskGiven && options.useMotionMask;
+    if (haveMotion)
+        motionIntegral.compute(mask);
+
+    // 1. Existing tracks follow their corners.
+    for (int i = 0; i < trackCount; ++i) {
+        Track& t = tracks[static_cast<std::size_t>(i)];
+        t.detectedThisFrame = false;
+        ++t.face.age;
+        if (options.mode != FaceTrackingMode::None && havePrevious)
+            trackPoints(t);
+    }
+    havePrevious = true;
+    // Tracks that left the image or merged into another face end here.
+    for (int i = 0; i < trackCount;) {
+        const TrackedFace& f = tracks[static_cast<std::size_t>(i)].face;
+        const bool outside = f.centre.x < 0.f || f.centre.y < 0.f ||
+                             f.centre.x >= static_cast<float>(s.width) ||
+                             f.centre.y >= static_cast<float>(s.height) || f.size < 8.f;
+        bool duplicate = false;
+        for (int k = 0; k < i && !duplicate; ++k)
+            duplicate = iou(tracks[static_cast<std::size_t>(k)].face.box(), f.box()) > 0.5f;
+        if (outside || duplicate)
+            drop(i);
+        else
+            ++i;
+    }
+
+    // 2. Detection where there is motion (or a face was recently) and no track is.
+    int excludedCount = 0;
+    if (options.mode != FaceTrackingMode::None)
+        for (int i = 0; i < trackCount; ++i)
+            excluded[static_cast<std::size_t>(excludedCount++)] =
+                tracks[static_cast<std::size_t>(i)].face.box();
+    const std::span<const Rect> exclude(excluded.data(), static_cast<std::size_t>(excludedCount));
+    int detected = 0;
+    if (haveMotion)
+        prepareScanMask(mask);
+    if (options.detectionWindowBudget > 0) {
+        // The scan spread over frames: faces() holds a result only when a scan completes.
+        scanDone = scan.detectMaskedIncremental(
+            grays[current].view(), haveMotion ? &scanMaskIntegral : nullptr,
+            options.minMaskFraction, exclude, options.detectionWindowBudget);
+        detected = scanDone ? static_cast<int>(scan.faces().size()) : 0;
+    } else if (haveMotion) {
+        detected = scan.detectMasked(grays[current].view(), scanMaskIntegral,
+                                     options.minMaskFraction, exclude);
+        scanDone = true;
+    } else if (excludedCount > 0) {
+        // No mask: everything scannable, but tracked faces still excluded (a minimum fraction
+        // of 0 accepts every window of the all-zero mask table).
+        detected = scan.detectMasked(grays[current].view(), scanMaskIntegral, 0.f, exclude);
+        scanDone = true;
+    } else {
+        detected = scan.detect(grays[current].view());
+        scanDone = true;
+    }
+    windows += scan.windowsEvaluated();
+    detectionCount = 0;
+    if (detected > 0) {
+        const std::span<const Rect> boxes = scan.faces();
+        for (const Rect& b : boxes)
+            if (detectionCount < static_cast<int>(outDetections.size()))
+                outDetections[static_cast<std::size_t>(detectionCount++)] = b;
+    }
+
+    // 3. Detections confirm the tracks they overlap; the others start new tracks.
+    for (int d = 0; d < detectionCount; ++d) {
+        const Rect box = outDetections[static_cast<std::size_t>(d)];
+        int best = -1;
+        float bestIou = options.matchIou;
+        for (int i = 0; i < trackCount; ++i) {
+            const float v = iou(tracks[static_cast<std::size_t>(i)].face.box(), box);
+            if (v >= bestIou) {
+                bestIou = v;
+                best = i;
+            }
+        }
+        if (best < 0) {
+            startTrack(box);
+            continue;
+        }
+        Track& t = tracks[static_cast<std::size_t>(best)];
+        if (t.detectedThisFrame)
+            continue;
+        t.detectedThisFrame = true;
+        // A detection re-anchors position and size (tracking drifts, detections do not).
+        t.face.centre = {static_cast<float>(box.x) + static_cast<float>(box.width) * 0.5f,
+                         static_cast<float>(box.y) + static_cast<float>(box.height) * 0.5f};
+        t.face.size = static_cast<float>(std::max(box.width, box.height));
+        if (options.mode != FaceTrackingMode::None && t.pointCount < options.minCornersPerFace)
+            findCorners(t, true);
+    }
+
+    // 4. Tracks without a detection are verified; 5. confirmation and grace.
+    for (int i = 0; i < trackCount;) {
+        Track& t = tracks[static_cast<std::size_t>(i)];
+        bool seen = t.detectedThisFrame;
+        const bool isNew = t.face.age == 0;
+        if (!seen && options.mode != FaceTrackingMode::None)
+            seen = verifyTrack(t);
+        if (!isNew) {
+            if (seen) {
+                ++t.face.hits;
+                t.face.misses = 0;
+            } else {
+                t.face.hits = 0;
+                ++t.face.misses;
+            }
+        }
+        // Static regions are ignored: a face shows it is a person by moving, i.e. its centre
+        // leaving the place it last moved from by a few percent of its size (a photo on the wall
+        // stays put, whatever the light does to the motion mask), or by a box full of motion.
+        // The first frames of a track settle its box (detections and re-anchoring move it a
+        // few pixels): they are no evidence either way.
+        constexpr int kSettleFrames = 10;
+        if (options.mode == FaceTrackingMode::None)
+            t.travel = t.face.centre;
+        if (t.face.age < kSettleFrames)
+            t.anchor = t.travel;
+        const float dx = t.travel.x - t.anchor.x, dy = t.travel.y - t.anchor.y;
+        const float step = std::max(1.5f, options.minFaceMoveFraction * t.face.size);
+        if (dx * dx + dy * dy > step * step ||
+            motionFraction(t.face.box()) >= options.minFaceMotionFraction) {
+            t.lastMotionFrame = frameIndex;
+            t.anchor = t.travel;
+        }
+        const bool moved =
+            !haveMotion || frameIndex - t.lastMotionFrame <= options.staticDropFrames;
+        const bool movedLately =
+            !haveMotion || frameIndex - t.lastMotionFrame <= options.confirmMotionFrames;
+        bool keep = true;
+        if (t.face.state == FaceState::Tentative) {
+            if (!seen)
+                keep = false;  // a face not yet shown gets no grace: phantoms die at once
+            else if (t.face.hits >= options.confirmFrames && movedLately)
+                t.face.state = FaceState::Confirmed;
+        } else if (seen) {
+            t.face.state = FaceState::Confirmed;
+        } else if (t.face.misses > options.graceFrames) {
+            keep = false;
+        } else {
+            t.face.state = FaceState::Missing;
+        }
+        if (!moved)
+            keep = false;  // static for too long: a poster, not a person
+        if (keep && options.mode != FaceTrackingMode::None && seen &&
+            t.pointCount < options.minCornersPerFace)
+            findCorners(t, true);
+        // Confidence: recent detection record, scaled by the corners that survived the flow.
+        const float record = std::min(
+            1.f, static_cast<float>(t.face.hits) / static_cast<float>(options.confirmFrames));
+        t.face.confidence = seen ? std::max(record * t.face.confidence, record * 0.5f) : 0.f;
+        if (keep)
+            ++i;
+        else
+            drop(i);
+    }
+    publish();
+    return true;
+}
+
+void FaceTracker::Impl::publish() noexcept
+{
+    for (int i = 0; i < trackCount; ++i) {
+        const Track& t = tracks[static_cast<std::size_t>(i)];
+        TrackedFace& f = outFaces[static_cast<std::size_t>(i)];
+        f = t.face;
+        f.points = t.points.data();
+        f.pointCount = t.pointCount;
+    }
+}
+
+FaceTracker::FaceTracker(const HaarCascade& cascade, const FaceTrackerOptions& options)
+{
+    validate(options);
+    impl_ = std::make_unique<Impl>(cascade, options);
+}
+
+FaceTracker::~FaceTracker() = default;
+FaceTracker::FaceTracker(FaceTracker&&) noexcept = default;
+FaceTracker& FaceTracker::operator=(FaceTracker&&) noexcept = default;
+
+bool FaceTracker::process(const ConstImageView& gray, const ConstImageView& motionMask) noexcept
+{
+    return impl_->process(gray, motionMask);
+}
+
+std::span<const TrackedFace> FaceTracker::faces() const noexcept
+{
+    return {impl_->outFaces.data(), static_cast<std::size_t>(impl_->trackCount)};
+}
+
+std::span<const Rect> FaceTracker::detections() const noexcept
+{
+    return {impl_->outDetections.data(), static_cast<std::size_t>(impl_->detectionCount)};
+}
+
+bool FaceTracker::scanCompleted() const noexcept
+{
+    return impl_->scanDone;
+}
+long FaceTracker::windowsEvaluated() const noexcept
+{
+    return impl_->windows;
+}
+
+void FaceTracker::reset() noexcept
+{
+    impl_->trackCount = 0;
+    impl_->havePrevious = false;
+    impl_->detectionCount = 0;
+    impl_->recent.fill(RecentArea{});
+}
+
+const FaceTrackerOptions& FaceTracker::options() const noexcept
+{
+    return impl_->options;
+}
+const char* FaceTracker::lastError() const noexcept
+{
+    return impl_->error;
+}
+
+}  // namespace vision

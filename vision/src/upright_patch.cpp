@@ -1,0 +1,80 @@
+// warpUpright: the inverse rotation of a face's square into an upright patch, in fixed point.
+
+#include "vision/upright_patch.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+
+namespace vision {
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+constexpr int kPosShift = 16;  // source positions in Q16
+constexpr float kLimit = 16384.0f;
+
+}  // namespace
+
+bool warpUpright(const ConstImageView& gray, Point2f centre, float rollDegrees, float sourceSide,
+                 ImageView patch) noexcept
+{
+    if (gray.empty() || gray.format != PixelFormat::Gray8 || patch.empty() ||
+        patch.format != PixelFormat::Gray8) {
+        return false;
+    }
+    if (!(sourceSide > 0.0f) || !std::isfinite(sourceSide) || !std::isfinite(rollDegrees) ||
+        !std::isfinite(centre.x) || !std::isfinite(centre.y)) {
+        return false;
+    }
+    const double rad = static_cast<double>(rollDegrees) * kPi / 180.0;
+    const double c = std::cos(rad);
+    const double s = std::sin(rad);
+    // One patch pixel is `unit` source pixels along the rotated axes.
+    const double unitX = static_cast<double>(sourceSide) / patch.width;
+    const double unitY = static_cast<double>(sourceSide) / patch.height;
+    // Source position (in pixel-centre coordinates: minus 0.5) of patch pixel (0, 0)'s centre,
+    // and the steps along a patch row (u) and down a column (v).
+    const double u0 = (0.5 - 0.5 * patch.width) * unitX;
+    const double v0 = (0.5 - 0.5 * patch.height) * unitY;
+    const double x0 = centre.x + c * u0 - s * v0 - 0.5;
+    const double y0 = centre.y + s * u0 + c * v0 - 0.5;
+    const double dxu = c * unitX;
+    const double dyu = s * unitX;
+    const double dxv = -s * unitY;
+    const double dyv = c * unitY;
+    // Every position is within the square's bounding box: bound it so Q16 fits in int32.
+    const double reach = std::fabs(dxu) * patch.width + std::fabs(dxv) * patch.height +
+                         std::fabs(dyu) * patch.width + std::fabs(dyv) * patch.height;
+    if (std::fabs(x0) + reach > kLimit + gray.width || std::fabs(y0) + reach > kLimit + gray.height)
+        return false;
+
+    const double one = 1 << kPosShift;
+    const auto q = [one](double v) { return static_cast<std::int32_t>(std::lrint(v * one)); };
+    const std::int32_t stepXu = q(dxu);
+    const std::int32_t stepYu = q(dyu);
+    const int maxX = gray.width - 1;
+    const int maxY = gray.height - 1;
+    for (int v = 0; v < patch.height; ++v) {
+        // Row starts from the exact start, so rounding does not accumulate down the patch.
+        std::int32_t sx = q(x0 + dxv * v);
+        std::int32_t sy = q(y0 + dyv * v);
+        std::uint8_t* out = patch.row(v);
+        for (int u = 0; u < patch.width; ++u, sx += stepXu, sy += stepYu) {
+            const int ix = sx >> kPosShift;  // floor (arithmetic shift)
+            const int iy = sy >> kPosShift;
+            const auto fx = static_cast<std::uint32_t>((sx >> (kPosShift - 8)) & 255);
+            const auto fy = static_cast<std::uint32_t>((sy >> (kPosShift - 8)) & 255);
+            const int xa = std::clamp(ix, 0, maxX);
+            const int xb = std::clamp(ix + 1, 0, maxX);
+            const std::uint8_t* ra = gray.row(std::clamp(iy, 0, maxY));
+            const std::uint8_t* rb = gray.row(std::clamp(iy + 1, 0, maxY));
+            const std::uint32_t top = ra[xa] * (256 - fx) + ra[xb] * fx;
+            const std::uint32_t bottom = rb[xa] * (256 - fx) + rb[xb] * fx;
+            out[u] = static_cast<std::uint8_t>((top * (256 - fy) + bottom * fy + 32768) >> 16);
+        }
+    }
+    return true;
+}
+
+}  // namespace vision
