@@ -5,6 +5,10 @@
 #include <stdexcept>
 #include <string>
 
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+#include <immintrin.h>
+#endif
+
 namespace vision {
 
 namespace {
@@ -39,12 +43,63 @@ MIRROR_PYR_CLONES void filterColumns(const std::uint8_t* r0, const std::uint8_t*
     }
 }
 
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+#define MIRROR_PYR_AVX2 1
+
+const bool kHasAvx2 = [] {
+    __builtin_cpu_init();
+    return __builtin_cpu_supports("avx2") != 0;
+}();
+
+/// Outputs x0, x0 + 1, ... of filterRowDown while 16 at a time fit (taps up to v[2x + 17] read):
+/// the stride-2 taps are the low and high halves of 32-bit lanes, weighted in multiply-adds
+/// (taps up to 16 * 255 are safe as signed 16-bit, sums up to 256 * 255). Returns the first
+/// output not written.
+__attribute__((target("avx2"))) int filterRowDownAvx2(const std::uint16_t* v, int w,
+                                                      std::uint8_t* out, int x0) noexcept
+{
+    const __m256i w14 = _mm256_set1_epi32(1 | (4 << 16));
+    const __m256i w64 = _mm256_set1_epi32(6 | (4 << 16));
+    const __m256i low = _mm256_set1_epi32(0xffff);
+    const __m256i round = _mm256_set1_epi32(128);
+    const auto eight = [&](int x) __attribute__((target("avx2")))
+    {
+        const std::uint16_t* p = v + 2 * x;
+        const __m256i l0 = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(p - 2));
+        const __m256i l1 = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(p));
+        const __m256i l2 = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(p + 2));
+        const __m256i sum = _mm256_add_epi32(
+            _mm256_add_epi32(_mm256_madd_epi16(l0, w14), _mm256_madd_epi16(l1, w64)),
+            _mm256_and_si256(l2, low));
+        return _mm256_srli_epi32(_mm256_add_epi32(sum, round), 8);
+    };
+    int x = x0;
+    for (; 2 * (x + 8) + 17 < w; x += 16) {
+        // packus works within 128-bit halves: reorder the quarters, then narrow to bytes.
+        const __m256i words =
+            _mm256_permute4x64_epi64(_mm256_packus_epi32(eight(x), eight(x + 8)), 0xD8);
+        const __m128i bytes =
+            _mm_packus_epi16(_mm256_castsi256_si128(words), _mm256_extracti128_si256(words, 1));
+        _mm_storeu_si128(reinterpret_cast<__m128i*>(out + x), bytes);
+    }
+    return x;
+}
+#else
+#define MIRROR_PYR_AVX2 0
+#endif
+
 /// The vertically filtered row filtered horizontally, subsampled by 2, rounded to 8 bits.
 MIRROR_PYR_CLONES void filterRowDown(const std::uint16_t* v, int w, std::uint8_t* out,
                                      int dw) noexcept
 {
     const int last = (w - 3) / 2;  // largest x with 2x + 2 <= w - 1: all taps inside
-    for (int x = 1; x <= last; ++x) {
+    int first = 1;
+#if MIRROR_PYR_AVX2
+    if (kHasAvx2) {
+        first = filterRowDownAvx2(v, w, out, 1);
+    }
+#endif
+    for (int x = first; x <= last; ++x) {
         const std::uint16_t* p = v + 2 * x;
         const std::uint32_t sum = static_cast<std::uint32_t>(p[-2]) + p[2] +
                                   4u * (static_cast<std::uint32_t>(p[-1]) + p[1]) + 6u * p[0];

@@ -13,8 +13,11 @@
 // points that do not come back within fbThreshold pixels.
 //
 // Windows are rows padded to a multiple of 8 values with zero gradients, so the inner loops run
-// on whole SIMD vectors (on x86-64 an AVX2 copy is chosen at load time). Near the border, pixels
-// outside repeat the edge; a coarse level whose window would lie mostly outside is skipped. A
+// on whole SIMD vectors. The scalar kernels are the reference; on x86-64 AVX2 copies written with
+// intrinsics (pixel pairs times weight pairs in one multiply-add) are chosen at run time, and
+// since all sums are exact integers both give identical results. Near the border the window's
+// pixels are first copied with the edge repeated outwards, then the same kernels run on the copy;
+// a coarse level whose window would lie mostly outside is skipped. A
 // point is Lost when it ends outside the image or a level-0 window is too flat (min eigenvalue
 // under minEigThreshold). On the FGNet frames the result equals cv::calcOpticalFlowPyrLK's to
 // 1e-3 px (tests/peer/optical_flow_peer_test.cpp).
@@ -67,7 +70,11 @@ private:
     /// Samples rows x cols values of `img` from (x, y) on (top-left) into `out` (values scaled by
     /// 32, rows outStride apart). Pixels outside the image repeat the border.
     void sampleWindow(ConstImageView img, float x, float y, int rows, int cols, int outStride,
-                      std::int16_t* out) const noexcept;
+                      std::int16_t* out) noexcept;
+    /// The (rows + 1) x (cols + 1) pixels of `img` from (x0, y0) on, copied into edge_ with the
+    /// image's edge pixels repeated outwards, so that windows near the border run the same
+    /// kernels as windows inside.
+    ConstImageView edgeCopy(ConstImageView img, int x0, int y0, int rows, int cols) noexcept;
 
     OpticalFlowOptions options_;
     int lanes_ = 0;  ///< window rows padded to a multiple of 8 values (the padding's gradients 0)
@@ -75,7 +82,7 @@ private:
     std::unique_ptr<std::int16_t[]> ival_;   ///< window samples of the previous frame (padded rows)
     std::unique_ptr<std::int16_t[]> ix_;     ///< window x gradients
     std::unique_ptr<std::int16_t[]> iy_;     ///< window y gradients
-    std::unique_ptr<std::int16_t[]> jval_;   ///< window samples of the next frame
+    std::unique_ptr<std::uint8_t[]> edge_;   ///< pixels near the border, edges repeated
 };
 
 }  // namespace vision
