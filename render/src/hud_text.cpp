@@ -161,6 +161,19 @@ HudText::Layout HudText::layout(const char* text, int viewportHeight) noexcept
     return l;
 }
 
+HudText::Layout HudText::centredLayout(const char* text, int viewportWidth,
+                                       int viewportHeight) noexcept
+{
+    Layout l = layout(text, viewportHeight * 2);
+    const int dx = (viewportWidth - l.boxWidth) / 2 - l.boxX;
+    const int dy = (viewportHeight - l.boxHeight) / 2 - l.boxY;
+    l.boxX += dx;
+    l.boxY += dy;
+    l.textX += dx;
+    l.textY += dy;
+    return l;
+}
+
 HudText::HudText()
 {
     if (glGetString(GL_VERSION) == nullptr)
@@ -233,7 +246,18 @@ HudText::~HudText() = default;
 
 void HudText::draw(const char* text, int viewportWidth, int viewportHeight) noexcept
 {
-    const Layout l = layout(text, viewportHeight);
+    drawLayout(text, layout(text, viewportHeight), viewportWidth, viewportHeight);
+}
+
+void HudText::drawCentred(const char* text, int viewportWidth, int viewportHeight) noexcept
+{
+    drawLayout(text, centredLayout(text, viewportWidth, viewportHeight), viewportWidth,
+               viewportHeight);
+}
+
+void HudText::drawLayout(const char* text, const Layout& l, int viewportWidth,
+                         int viewportHeight) noexcept
+{
     if (l.lines == 0 || viewportWidth <= 0 || viewportHeight <= 0)
         return;
 

@@ -288,4 +288,22 @@ bool Renderer::draw(const vision::ConstImageView& frame, int viewportWidth, int 
     return true;
 }
 
+bool Renderer::drawMessage(const char* message, int viewportWidth, int viewportHeight) noexcept
+{
+    glViewport(0, 0, viewportWidth, viewportHeight);
+    glDisable(GL_DEPTH_TEST);
+    // A dark slate, not black: the mirror is on and says so.
+    glClearColor(0.09f, 0.11f, 0.14f, 1.f);
+    glClear(GL_COLOR_BUFFER_BIT);
+    gl_->hud.drawCentred(message, viewportWidth, viewportHeight);
+    const GLenum error = glGetError();
+    if (error != GL_NO_ERROR) {
+        std::snprintf(lastError_, sizeof(lastError_), "GL error 0x%04x after drawMessage", error);
+        for (int i = 0; i < 8 && glGetError() != GL_NO_ERROR; ++i) {
+        }
+        return false;
+    }
+    return true;
+}
+
 }  // namespace render

@@ -33,6 +33,9 @@ public:
     /// The layout of `text` (lines split at '\n'; a final '\n' adds no line) on a viewport of this
     /// height: one text line is about 2.5% of the height.
     static Layout layout(const char* text, int viewportHeight) noexcept;
+    /// The layout of a message centred on the viewport, at twice the HUD's size (the "camera
+    /// unavailable" screen).
+    static Layout centredLayout(const char* text, int viewportWidth, int viewportHeight) noexcept;
 
     /// Creates the font atlas, shaders and buffers. Needs a current GLES2 context; throws
     /// std::runtime_error with one line on failure.
@@ -45,8 +48,12 @@ public:
     /// viewportWidth x viewportHeight. Sets the blending it needs. Non-printable characters show
     /// as '?'. Never allocates; GL errors are left for the caller's glGetError().
     void draw(const char* text, int viewportWidth, int viewportHeight) noexcept;
+    /// Draws `text` as laid out by centredLayout().
+    void drawCentred(const char* text, int viewportWidth, int viewportHeight) noexcept;
 
 private:
+    void drawLayout(const char* text, const Layout& layout, int viewportWidth,
+                    int viewportHeight) noexcept;
     struct Gl;  // GL objects and the vertex array; defined in hud_text.cpp (no GL header here)
     std::unique_ptr<Gl> gl_;
 };

@@ -49,6 +49,10 @@ public:
     bool draw(const vision::ConstImageView& frame, int viewportWidth, int viewportHeight,
               const char* hudText) noexcept;
 
+    /// Draws a calm full-screen message instead of the video (dark background, centred text), e.g.
+    /// "camera unavailable" while the source is lost, so the screen never shows a frozen frame.
+    /// Never allocates; false on a GL error.
+    bool drawMessage(const char* message, int viewportWidth, int viewportHeight) noexcept;
     /// The image-to-NDC mapping used for the last draw (also handed to layers).
     const LayerContext& layerContext() const noexcept { return context_; }
     const char* lastError() const noexcept { return lastError_; }
