@@ -1,0 +1,51 @@
+#pragma once
+// HeadPose: where a head is and how it is turned, in the camera's 3D frame, for placing 3D
+// overlays (hats, glasses) on a tracked face (issue 5). Until a full 3D head pose is tracked, the
+// pose comes from the face box alone (headPoseFromFace): position, scale and roll, yaw and pitch 0.
+//
+// Frames (all right-handed, metres):
+//  - camera frame (as OpenCV): origin at the camera's centre of projection, x towards image right,
+//    y towards image bottom, z forward along the optical axis (into the scene). A point (X, Y, Z)
+//    projects to the pixel (f X / Z + cx, f Y / Z + cy) of the unmirrored camera image.
+//  - head frame: origin at the eye midpoint (between the pupils, at the depth of the eyes); for a
+//    face looking straight at the camera, unrolled and unmirrored, its axes are the camera's:
+//    x towards image right (the person's left), y down (towards the chin), z into the head (away
+//    from the camera).
+// A head point p maps to the camera frame as rotation * p + translation.
+
+#include "vision/face_tracker.hpp"
+#include "vision/image.hpp"
+
+#include <Eigen/Core>
+
+namespace vision {
+
+/// A pinhole camera without distortion, principal point at the image centre, square pixels.
+struct CameraModel {
+    Size imageSize{};                 ///< the image the face coordinates are in
+    float verticalFovDegrees = 50.f;  ///< full vertical field of view
+
+    /// Focal length in pixels: (height / 2) / tan(fov / 2).
+    float focalPixels() const noexcept;
+};
+
+/// Rigid transform from the head frame to the camera frame (see the file comment).
+struct HeadPose {
+    Eigen::Matrix3f rotation = Eigen::Matrix3f::Identity();
+    Eigen::Vector3f translation = Eigen::Vector3f::Zero();  ///< the eye midpoint, camera frame
+};
+
+/// Where the eye midpoint lies in a tracker face box: above the box centre by this fraction of the
+/// box side, along the face's rolled up axis (the Viola-Jones frontal-face box puts the eyes at
+/// about 0.38 of its height from the top).
+inline constexpr float kEyeMidpointAboveBoxCentre = 0.12f;
+
+/// The pose of the head of `face` (coordinates in `camera.imageSize`): yaw and pitch zero, roll
+/// `face.rollDegrees` (clockwise on screen, i.e. about the camera's +z), depth from the box side
+/// taken as the face width: Z = f * faceWidthMetres / face.size. The translation is the eye
+/// midpoint (see kEyeMidpointAboveBoxCentre) back-projected to that depth. A face without a size
+/// (size <= 0) is placed at a depth of 1 m.
+HeadPose headPoseFromFace(const TrackedFace& face, const CameraModel& camera,
+                          float faceWidthMetres = 0.15f) noexcept;
+
+}  // namespace vision
