@@ -1,0 +1,40 @@
+#pragma once
+// The project's overlay models: glasses, sunglasses and five hats, built procedurally.
+
+#include "model.hpp"
+
+#include <vector>
+
+namespace overlaygen {
+
+/// The head the models are made for, in metres, with the eye midpoint as origin (the
+/// catalogue's head for a face width of 0.15 m; see assets/overlays/FORMAT.md).
+struct HeadMetrics {
+    static constexpr double faceWidth = 0.15;
+    static constexpr double interocular = 0.063;
+    /// The renderer's invisible head proxy (render/head_model.hpp): an ellipsoid whose
+    /// horizontal sections are superellipses of this exponent.
+    static constexpr double proxyCentre[3] = {0.0, 0.0, -0.0825};
+    static constexpr double proxySemiAxes[3] = {0.075, 0.12, 0.093};
+    static constexpr double proxySquareness = 3.0;
+    /// The head_top anchor.
+    static constexpr double headTop[3] = {0.0, 0.12, -0.0825};
+    /// Inner semi-axes of a hat's opening: an ellipse of circumference ~0.57 m.
+    static constexpr double hatInnerX = 0.080;
+    static constexpr double hatInnerZ = 0.100;
+    /// Height of a hat's band line above the eyes.
+    static constexpr double hatBaseY = 0.060;
+};
+
+Model buildGlasses();
+Model buildSunglasses();
+Model buildTopHat();
+Model buildGraduationCap();
+Model buildPartyHat();
+Model buildSunHat();
+Model buildRainHat();
+
+/// All of them, in catalogue order.
+std::vector<Model> buildAllModels();
+
+}  // namespace overlaygen
