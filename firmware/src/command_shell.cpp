@@ -155,9 +155,11 @@ void Reply::line(std::string_view text) noexcept
 
 // --- CommandShell -----------------------------------------------------------------------------
 
-CommandShell::CommandShell(ShellOptions options)
-    : options_(options), assembler_(options.maxLineLength)
+CommandShell::CommandShell(ShellOptions options) : options_(options)
 {
+    for (std::size_t i = 0; i < kChannels; ++i)
+        assemblers_.emplace_back(options.maxLineLength);
+    styles_[0] = {options.prompt, options.crlf};
     if (options.readBudget == 0)
         throw std::runtime_error("command shell: the read budget must be at least 1 byte");
     readBuffer_ = std::make_unique<char[]>(options.readBudget);
@@ -272,8 +274,9 @@ void CommandShell::handle(const LineEvent& event, platform::Console& out) noexce
 void CommandShell::send(platform::Console& out) noexcept
 {
     std::string_view text = reply_.text();
-    const std::string_view newline = options_.crlf ? "\r\n" : "\n";
-    if (!options_.crlf) {
+    const bool crlf = styles_[channel_].crlf;
+    const std::string_view newline = crlf ? "\r\n" : "\n";
+    if (!crlf) {
         out.write(text);
     } else {
         for (std::size_t end; (end = text.find('\n')) != std::string_view::npos;) {
@@ -291,16 +294,21 @@ void CommandShell::send(platform::Console& out) noexcept
 
 void CommandShell::writePrompt(platform::Console& out) noexcept
 {
-    if (options_.prompt)
+    if (styles_[channel_].prompt)
         out.write("> ");
-    promptShown_ = true;
 }
 
-CommandShell::PollResult CommandShell::poll(platform::Console& console) noexcept
+CommandShell::PollResult CommandShell::poll(platform::Console& console,
+                                            std::size_t channel) noexcept
 {
     PollResult result;
-    if (!promptShown_)
+    channel = std::min(channel, kChannels - 1);
+    channel_ = channel;
+    LineAssembler& assembler = assemblers_[channel];
+    if (!promptShown_[channel]) {
         writePrompt(console);
+        promptShown_[channel] = true;
+    }
     auto onEvent = [&](const LineEvent& event) noexcept {
         handle(event, console);
         ++result.events;
@@ -310,7 +318,7 @@ CommandShell::PollResult CommandShell::poll(platform::Console& console) noexcept
         const long n = console.read(readBuffer_.get(), room);
         if (n < 0) {
             result.closed = true;
-            assembler_.finish(onEvent);
+            assembler.finish(onEvent);
             break;
         }
         if (n == 0)
@@ -318,9 +326,16 @@ CommandShell::PollResult CommandShell::poll(platform::Console& console) noexcept
         // Trust no more than was asked for, whatever the console claims.
         const std::size_t got = std::min(static_cast<std::size_t>(n), room);
         result.bytesRead += got;
-        assembler_.feed(readBuffer_.get(), got, onEvent);
+        assembler.feed(readBuffer_.get(), got, onEvent);
     }
+    channel_ = 0;
     return result;
+}
+
+void CommandShell::setChannelStyle(std::size_t channel, bool prompt, bool crlf) noexcept
+{
+    if (channel < kChannels)
+        styles_[channel] = {prompt, crlf};
 }
 
 }  // namespace firmware

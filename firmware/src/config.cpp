@@ -205,6 +205,56 @@ std::optional<Value> checkValue(const KeySpec& spec, const toml::node& node, std
             }
             return Value(static_cast<std::int64_t>(found - spec.choices.begin()));
         }
+        case Kind::IntList: {
+            const auto* array = node.as_array();
+            if (array == nullptr)
+                return wrongType("array of integers");
+            if (array->empty() || static_cast<int>(array->size()) > spec.maxItems) {
+                what = withAllowed(std::to_string(array->size()) + " entries", spec);
+                return std::nullopt;
+            }
+            std::vector<std::int64_t> values;
+            for (const toml::node& item : *array) {
+                const auto* i = item.as_integer();
+                if (i == nullptr) {
+                    what = "expected integers, got " + std::string(nodeTypeName(item));
+                    return std::nullopt;
+                }
+                const std::int64_t v = i->get();
+                if (static_cast<double>(v) < spec.min || static_cast<double>(v) > spec.max)
+                    return outOfRange(std::to_string(v));
+                if (std::find(values.begin(), values.end(), v) != values.end()) {
+                    what = withAllowed(std::to_string(v) + " is listed twice", spec);
+                    return std::nullopt;
+                }
+                values.push_back(v);
+            }
+            return Value(std::move(values));
+        }
+        case Kind::WordList: {
+            const auto* array = node.as_array();
+            if (array == nullptr)
+                return wrongType("array of strings");
+            if (static_cast<int>(array->size()) > spec.maxItems) {
+                what = withAllowed(std::to_string(array->size()) + " entries", spec);
+                return std::nullopt;
+            }
+            std::vector<std::string> words;
+            for (const toml::node& item : *array) {
+                const auto* w = item.as_string();
+                if (w == nullptr) {
+                    what = "expected strings, got " + std::string(nodeTypeName(item));
+                    return std::nullopt;
+                }
+                std::string wrong = spec.check != nullptr ? spec.check(w->get()) : std::string();
+                if (!wrong.empty()) {
+                    what = withAllowed(std::move(wrong), spec);
+                    return std::nullopt;
+                }
+                words.push_back(w->get());
+            }
+            return Value(std::move(words));
+        }
         case Kind::Rate: {
             if (const auto* s = node.as_string()) {
                 if (s->get() == "native" || s->get() == "max") {
@@ -409,7 +459,8 @@ void applySet(const std::string& set, int index, Config& config, std::vector<Con
     const std::string_view value = trim(std::string_view(set).substr(equals + 1));
     const KeySpec* spec = config_schema::findKey(key);
     const bool stringKey = spec != nullptr && spec->kind != Kind::Bool && spec->kind != Kind::Int &&
-                           spec->kind != Kind::Float;
+                           spec->kind != Kind::Float && spec->kind != Kind::IntList &&
+                           spec->kind != Kind::WordList;
     if (stringKey && !value.empty() && value.front() != '"' && value.front() != '\'') {
         bool validToml = true;
         try {

@@ -3,6 +3,9 @@
 
 #include "config_schema.hpp"
 
+#include "firmware/button_actions.hpp"
+#include "platform/display_mode.hpp"
+
 #include <array>
 #include <charconv>
 #include <cstdio>
@@ -89,6 +92,46 @@ std::string checkOptionalPath(std::string_view value)
     return {};
 }
 
+std::string checkPath(std::string_view value)
+{
+    if (value.empty())
+        return "needs a file path";
+    return checkOptionalPath(value);
+}
+
+std::string checkButtonAction(std::string_view value)
+{
+    ButtonAction action{};
+    if (parseButtonAction(value, action))
+        return {};
+    return "unknown action " + quoted(value);
+}
+
+std::string checkOverlayName(std::string_view value)
+{
+    if (value.empty())
+        return "needs \"none\" or an overlay name";
+    return checkOptionalPath(value);
+}
+
+std::string checkSerial(std::string_view value)
+{
+    if (!value.empty() && value.front() != '/')
+        return "needs \"\" (none) or an absolute device path";
+    return checkOptionalPath(value);
+}
+
+std::string checkDisplayMode(std::string_view value)
+{
+    if (value.empty() || value == "preferred")
+        return {};
+    platform::DisplayModeRequest mode;
+    std::string error;
+    if (platform::parseDisplayMode(value, mode, error))
+        return {};
+    return error.empty() ? "unknown mode " + quoted(value) : error;
+}
+
 std::string checkDirectory(std::string_view value)
 {
     if (value.empty())
@@ -100,7 +143,14 @@ std::string checkDirectory(std::string_view value)
 constexpr std::array<std::string_view, 3> kCardChoices{"auto", "on", "off"};
 constexpr std::array<std::string_view, 2> kFitChoices{"cover", "contain"};
 constexpr std::array<std::string_view, 4> kLevelChoices{"error", "warn", "info", "debug"};
+constexpr std::array<std::string_view, 4> kTrackingChoices{"none", "translation", "similarity",
+                                                           "affine"};
+constexpr std::array<std::string_view, 4> kBiasChoices{"as-is", "disable", "pull-up", "pull-down"};
+constexpr std::array<std::string_view, 2> kOverlayModeChoices{"global", "per_face"};
+static_assert(static_cast<int>(ButtonsConfig::Bias::PullDown) == 3);
+static_assert(static_cast<int>(OverlayConfig::Mode::PerFace) == 1);
 static_assert(static_cast<int>(SourceConfig::Card::Off) == 2);
+static_assert(static_cast<int>(FacesConfig::Tracking::Affine) == 3);
 static_assert(static_cast<int>(DisplayConfig::Fit::Contain) == 1);
 static_assert(static_cast<int>(LogLevel::Debug) == 3);
 
@@ -209,6 +259,25 @@ const KeySpec kSchema[] = {
      .doc = "Show the diagnostics text (fps, stage times) in the top-left corner",
      .set = [](Config& c, const Value& v) { c.display.hud = asBool(v); },
      .get = [](const Config& c) -> Value { return c.display.hud; }},
+    {.name = "display.debug",
+     .kind = Kind::Bool,
+     .doc = "Debug HUD: draw face boxes, tracked corners and roll axes over the image",
+     .set = [](Config& c, const Value& v) { c.display.debug = asBool(v); },
+     .get = [](const Config& c) -> Value { return c.display.debug; }},
+    {.name = "display.mode",
+     .kind = Kind::String,
+     .check = checkDisplayMode,
+     .stringForms = R"("" or "preferred" (the panel's own), "WxH" or "WxH@Hz", e.g. "1280x720@60")",
+     .doc = "Screen mode of a DRM/KMS panel",
+     .set = [](Config& c, const Value& v) { c.display.mode = asText(v); },
+     .get = [](const Config& c) -> Value { return c.display.mode; }},
+    {.name = "display.snapshot_dir",
+     .kind = Kind::String,
+     .check = checkOptionalPath,
+     .stringForms = R"("" (the state folder's snapshots/) or a directory)",
+     .doc = "Where a DRM/KMS panel's `snapshot` PNGs go (headless displays use their own folder)",
+     .set = [](Config& c, const Value& v) { c.display.snapshotDir = asText(v); },
+     .get = [](const Config& c) -> Value { return c.display.snapshotDir; }},
     {.name = "display.snapshot_every",
      .kind = Kind::Int,
      .min = 0,
@@ -243,6 +312,20 @@ const KeySpec kSchema[] = {
      .doc = "Longest accepted shell line in bytes; longer lines get one error line",
      .set = [](Config& c, const Value& v) { c.console.maxLineLength = asInt(v); },
      .get = [](const Config& c) { return intValue(c.console.maxLineLength); }},
+    {.name = "console.serial",
+     .kind = Kind::String,
+     .check = checkSerial,
+     .stringForms = R"("" (no serial console) or a device path, e.g. "/dev/ttyS0", "/dev/ttyAMA0")",
+     .doc = "Serial port of the diagnostics console (8N1, raw); a missing port is one warning",
+     .set = [](Config& c, const Value& v) { c.console.serial = asText(v); },
+     .get = [](const Config& c) -> Value { return c.console.serial; }},
+    {.name = "console.baud",
+     .kind = Kind::Int,
+     .min = 1200,
+     .max = 4000000,
+     .doc = "Serial console speed in bits per second (a standard rate, e.g. 115200)",
+     .set = [](Config& c, const Value& v) { c.console.baud = asInt(v); },
+     .get = [](const Config& c) { return intValue(c.console.baud); }},
     // [vision]
     {.name = "vision.chromaticity",
      .kind = Kind::Bool,
@@ -254,6 +337,213 @@ const KeySpec kSchema[] = {
      .doc = "4.2.4: remove interlace tearing before tracking (for interlaced cameras)",
      .set = [](Config& c, const Value& v) { c.vision.deinterlace = asBool(v); },
      .get = [](const Config& c) -> Value { return c.vision.deinterlace; }},
+    // [faces]
+    {.name = "faces.enabled",
+     .kind = Kind::Bool,
+     .doc = "Find and track faces (5.1): motion, Viola-Jones detection, corner tracking",
+     .set = [](Config& c, const Value& v) { c.faces.enabled = asBool(v); },
+     .get = [](const Config& c) -> Value { return c.faces.enabled; }},
+    {.name = "faces.cascade",
+     .kind = Kind::String,
+     .check = checkPath,
+     .stringForms = R"(an OpenCV Haar cascade XML path)",
+     .doc = "Face detector cascade (OpenCV's Haar XML); read at start-up",
+     .set = [](Config& c, const Value& v) { c.faces.cascade = asText(v); },
+     .get = [](const Config& c) -> Value { return c.faces.cascade; }},
+    {.name = "faces.downscale",
+     .kind = Kind::Int,
+     .min = 1,
+     .max = 4,
+     .doc = "Motion and detection run at the camera size divided by this (2: 720x480 -> 360x240)",
+     .set = [](Config& c, const Value& v) { c.faces.downscale = asInt(v); },
+     .get = [](const Config& c) { return intValue(c.faces.downscale); }},
+    {.name = "faces.tracking",
+     .kind = Kind::Enum,
+     .choices = kTrackingChoices,
+     .doc = "How faces move between detections: none (detector only), translation, similarity "
+            "(with roll and roll-warped verification), affine",
+     .set = [](Config& c, const Value& v) { c.faces.tracking = asEnum<FacesConfig::Tracking>(v); },
+     .get = [](const Config& c) { return enumValue(c.faces.tracking); }},
+    {.name = "faces.motion_mask",
+     .kind = Kind::Bool,
+     .doc = "Scan for new faces only where something moves (static faces are ignored)",
+     .set = [](Config& c, const Value& v) { c.faces.motionMask = asBool(v); },
+     .get = [](const Config& c) -> Value { return c.faces.motionMask; }},
+    {.name = "faces.scale_factor",
+     .kind = Kind::Float,
+     .min = 1.01,
+     .max = 2,
+     .doc = "Detector window growth per scale (OpenCV's scaleFactor)",
+     .set = [](Config& c, const Value& v) { c.faces.scaleFactor = asDouble(v); },
+     .get = [](const Config& c) -> Value { return c.faces.scaleFactor; }},
+    {.name = "faces.min_neighbors",
+     .kind = Kind::Int,
+     .min = 0,
+     .max = 20,
+     .doc = "Raw detections a face needs beyond this count (OpenCV's minNeighbors)",
+     .set = [](Config& c, const Value& v) { c.faces.minNeighbors = asInt(v); },
+     .get = [](const Config& c) { return intValue(c.faces.minNeighbors); }},
+    {.name = "faces.min_size",
+     .kind = Kind::Int,
+     .min = 0,
+     .max = 1000,
+     .doc = "Smallest face box in pixels at the working (downscaled) resolution",
+     .set = [](Config& c, const Value& v) { c.faces.minSize = asInt(v); },
+     .get = [](const Config& c) { return intValue(c.faces.minSize); }},
+    {.name = "faces.confirm_frames",
+     .kind = Kind::Int,
+     .min = 1,
+     .max = 30,
+     .doc = "n: frames in a row a face must be found before it is shown (fig. 89)",
+     .set = [](Config& c, const Value& v) { c.faces.confirmFrames = asInt(v); },
+     .get = [](const Config& c) { return intValue(c.faces.confirmFrames); }},
+    {.name = "faces.grace_frames",
+     .kind = Kind::Int,
+     .min = 0,
+     .max = 300,
+     .doc = "m: frames in a row a shown face may be missed before it is dropped (fig. 89)",
+     .set = [](Config& c, const Value& v) { c.faces.graceFrames = asInt(v); },
+     .get = [](const Config& c) { return intValue(c.faces.graceFrames); }},
+    {.name = "faces.max_faces",
+     .kind = Kind::Int,
+     .min = 1,
+     .max = 16,
+     .doc = "Faces tracked at once",
+     .set = [](Config& c, const Value& v) { c.faces.maxFaces = asInt(v); },
+     .get = [](const Config& c) { return intValue(c.faces.maxFaces); }},
+    {.name = "faces.detection_budget",
+     .kind = Kind::Int,
+     .min = 0,
+     .max = 100000000,
+     .doc = "Detector windows per frame; a longer scan continues on the next frames (0 = no limit)",
+     .set = [](Config& c, const Value& v) { c.faces.detectionBudget = asInt(v); },
+     .get = [](const Config& c) { return intValue(c.faces.detectionBudget); }},
+    {.name = "faces.static_drop_s",
+     .kind = Kind::Float,
+     .min = 0.5,
+     .max = 3600,
+     .doc = "A face that has not moved for this many seconds is a picture, not a person: dropped",
+     .set = [](Config& c, const Value& v) { c.faces.staticDropS = asDouble(v); },
+     .get = [](const Config& c) -> Value { return c.faces.staticDropS; }},
+    {.name = "faces.motion_components",
+     .kind = Kind::Int,
+     .min = 1,
+     .max = 5,
+     .doc = "K: Gaussians per pixel of the motion model (Stauffer-Grimson)",
+     .set = [](Config& c, const Value& v) { c.faces.motionComponents = asInt(v); },
+     .get = [](const Config& c) { return intValue(c.faces.motionComponents); }},
+    {.name = "faces.motion_learning_rate",
+     .kind = Kind::Float,
+     .min = 0.0001,
+     .max = 0.5,
+     .doc = "How fast the motion model learns the background (per frame)",
+     .set = [](Config& c, const Value& v) { c.faces.motionLearningRate = asDouble(v); },
+     .get = [](const Config& c) -> Value { return c.faces.motionLearningRate; }},
+    // [overlay]
+    {.name = "overlay.enabled",
+     .kind = Kind::Bool,
+     .doc = "Draw hats and glasses (5.4) on the shown faces",
+     .set = [](Config& c, const Value& v) { c.overlay.enabled = asBool(v); },
+     .get = [](const Config& c) -> Value { return c.overlay.enabled; }},
+    {.name = "overlay.catalogue",
+     .kind = Kind::String,
+     .check = checkOptionalPath,
+     .stringForms = R"("" (the installed catalogue) or a catalogue TOML path)",
+     .doc = "The overlay catalogue; adding a hat is adding its files and a catalogue entry",
+     .set = [](Config& c, const Value& v) { c.overlay.catalogue = asText(v); },
+     .get = [](const Config& c) -> Value { return c.overlay.catalogue; }},
+    {.name = "overlay.mode",
+     .kind = Kind::Enum,
+     .choices = kOverlayModeChoices,
+     .doc = "One overlay for everyone (global) or one per face, the buttons changing the nearest",
+     .set = [](Config& c, const Value& v) { c.overlay.mode = asEnum<OverlayConfig::Mode>(v); },
+     .get = [](const Config& c) { return enumValue(c.overlay.mode); }},
+    {.name = "overlay.fade_ms",
+     .kind = Kind::Int,
+     .min = 0,
+     .max = 5000,
+     .doc = "Overlays fade in and out over this many milliseconds instead of popping",
+     .set = [](Config& c, const Value& v) { c.overlay.fadeMs = asInt(v); },
+     .get = [](const Config& c) { return intValue(c.overlay.fadeMs); }},
+    {.name = "overlay.default",
+     .kind = Kind::String,
+     .check = checkOverlayName,
+     .stringForms = R"("none" or a catalogue name)",
+     .doc = "Worn at the very first start; afterwards the last choice is kept in the state folder",
+     .set = [](Config& c, const Value& v) { c.overlay.initial = asText(v); },
+     .get = [](const Config& c) -> Value { return c.overlay.initial; }},
+    {.name = "overlay.fov_deg",
+     .kind = Kind::Float,
+     .min = 10,
+     .max = 150,
+     .doc = "The camera's vertical field of view, for the overlays' perspective",
+     .set = [](Config& c, const Value& v) { c.overlay.verticalFovDeg = asDouble(v); },
+     .get = [](const Config& c) -> Value { return c.overlay.verticalFovDeg; }},
+    // [buttons]
+    {.name = "buttons.enabled",
+     .kind = Kind::Bool,
+     .doc = "Push buttons on GPIO lines; a missing or busy chip is one warning",
+     .set = [](Config& c, const Value& v) { c.buttons.enabled = asBool(v); },
+     .get = [](const Config& c) -> Value { return c.buttons.enabled; }},
+    {.name = "buttons.chip",
+     .kind = Kind::String,
+     .check = checkPath,
+     .stringForms = R"(a chip name ("gpiochip0"), number, label or path ("/dev/gpiochip0"))",
+     .doc = "The GPIO chip of the buttons",
+     .set = [](Config& c, const Value& v) { c.buttons.chip = asText(v); },
+     .get = [](const Config& c) -> Value { return c.buttons.chip; }},
+    {.name = "buttons.lines",
+     .kind = Kind::IntList,
+     .min = 0,
+     .max = 1023,
+     .maxItems = 16,
+     .doc = "Line offsets on the chip; button 1 is the first (Raspberry Pi: BCM numbers)",
+     .set = [](Config& c,
+               const Value& v) { c.buttons.lines = std::get<std::vector<std::int64_t>>(v); },
+     .get = [](const Config& c) -> Value { return c.buttons.lines; }},
+    {.name = "buttons.active_low",
+     .kind = Kind::Bool,
+     .doc = "A pressed button reads low (a switch to ground with a pull-up)",
+     .set = [](Config& c, const Value& v) { c.buttons.activeLow = asBool(v); },
+     .get = [](const Config& c) -> Value { return c.buttons.activeLow; }},
+    {.name = "buttons.bias",
+     .kind = Kind::Enum,
+     .choices = kBiasChoices,
+     .doc = "The lines' internal resistor (disable when the board has its own)",
+     .set = [](Config& c, const Value& v) { c.buttons.bias = asEnum<ButtonsConfig::Bias>(v); },
+     .get = [](const Config& c) { return enumValue(c.buttons.bias); }},
+    {.name = "buttons.debounce_ms",
+     .kind = Kind::Int,
+     .min = 0,
+     .max = 500,
+     .doc = "A level counts once it has lasted this long (contact bounce is ignored)",
+     .set = [](Config& c, const Value& v) { c.buttons.debounceMs = asInt(v); },
+     .get = [](const Config& c) { return intValue(c.buttons.debounceMs); }},
+    {.name = "buttons.long_press_ms",
+     .kind = Kind::Int,
+     .min = 100,
+     .max = 10000,
+     .doc = "Held this long is a long press, reported as soon as the time has passed",
+     .set = [](Config& c, const Value& v) { c.buttons.longPressMs = asInt(v); },
+     .get = [](const Config& c) { return intValue(c.buttons.longPressMs); }},
+    {.name = "buttons.short_press",
+     .kind = Kind::WordList,
+     .maxItems = 16,
+     .check = checkButtonAction,
+     .stringForms = R"("next", "prev", "off", "train-card", "toggle-debug", "snapshot", "none")",
+     .doc = "What a short press of button 1, 2, ... does",
+     .set = [](Config& c,
+               const Value& v) { c.buttons.shortPress = std::get<std::vector<std::string>>(v); },
+     .get = [](const Config& c) -> Value { return c.buttons.shortPress; }},
+    {.name = "buttons.long_press",
+     .kind = Kind::WordList,
+     .maxItems = 16,
+     .check = checkButtonAction,
+     .stringForms = R"("next", "prev", "off", "train-card", "toggle-debug", "snapshot", "none")",
+     .doc = "What a long press of button 1, 2, ... does",
+     .set = [](Config& c,
+               const Value& v) { c.buttons.longPress = std::get<std::vector<std::string>>(v); },
+     .get = [](const Config& c) -> Value { return c.buttons.longPress; }},
     // [card]
     {.name = "card.enabled",
      .kind = Kind::Bool,
@@ -365,6 +655,10 @@ std::string_view typeName(const KeySpec& spec)
             return "string";
         case Kind::Rate:
             return "string or number";
+        case Kind::IntList:
+            return "array of integers";
+        case Kind::WordList:
+            return "array of strings";
     }
     return "?";
 }
@@ -389,6 +683,20 @@ std::string allowed(const KeySpec& spec)
         }
         case Kind::Rate:
             return R"("native", "max" or a number )" + range(spec);
+        case Kind::IntList: {
+            std::string text = "1..";
+            text += std::to_string(spec.maxItems);
+            text += " distinct integers, each ";
+            text += range(spec);
+            return text;
+        }
+        case Kind::WordList: {
+            std::string text = "up to ";
+            text += std::to_string(spec.maxItems);
+            text += " of ";
+            text += spec.stringForms;
+            return text;
+        }
     }
     return {};
 }
@@ -419,6 +727,24 @@ std::string formatValue(const KeySpec& spec, const Value& value)
                 return quoted(*text);
             }
             return formatNumber(asDouble(value));  // an integral rate prints as an integer: fine
+        case Kind::IntList: {
+            std::string text = "[";
+            for (const std::int64_t v : std::get<std::vector<std::int64_t>>(value)) {
+                if (text.size() > 1)
+                    text += ", ";
+                text += std::to_string(v);
+            }
+            return text + "]";
+        }
+        case Kind::WordList: {
+            std::string text = "[";
+            for (const std::string& w : std::get<std::vector<std::string>>(value)) {
+                if (text.size() > 1)
+                    text += ", ";
+                text += quoted(w);
+            }
+            return text + "]";
+        }
     }
     return {};
 }

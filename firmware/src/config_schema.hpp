@@ -23,12 +23,15 @@ enum class Kind {
     String,  ///< TOML string whose form `check` accepts
     Enum,    ///< one of `choices`
     Rate,    ///< "native", "max" or a number in [min, max]
+    IntList,   ///< TOML array of 1..maxItems distinct integers, each in [min, max]
+    WordList,  ///< TOML array of 0..maxItems strings, each accepted by `check`
 };
 
 /// A checked value on its way into or out of Config. Enum values travel as the index into
 /// KeySpec::choices (the choices are listed in the order of the C++ enum); a Rate travels as the
 /// string "native"/"max" or as the fps (double).
-using Value = std::variant<bool, std::int64_t, double, std::string>;
+using Value = std::variant<bool, std::int64_t, double, std::string, std::vector<std::int64_t>,
+                           std::vector<std::string>>;
 
 /// Checks the form of a String value: empty if it is fine, else what is wrong (one line).
 using StringCheck = std::string (*)(std::string_view value);
@@ -40,8 +43,9 @@ struct KeySpec {
     double min = 0.0;  ///< Int, Float, Rate: inclusive range
     double max = 0.0;
     bool even = false;                            ///< Int: odd values are rejected
+    int maxItems = 0;                             ///< IntList, WordList: most entries
     std::span<const std::string_view> choices{};  ///< Enum
-    StringCheck check = nullptr;                  ///< String
+    StringCheck check = nullptr;                  ///< String, WordList (each word)
     std::string_view stringForms{};               ///< String: the accepted forms, for messages/docs
     std::string_view doc{};                       ///< one line, what the key means
     void (*set)(Config& config, const Value& value) = nullptr;

@@ -4,9 +4,15 @@
 #include "firmware/log.hpp"
 #include "firmware/startup_error.hpp"
 #include "platform/card_scene_source.hpp"
+#include "platform/drm_display.hpp"
 #include "platform/file_source.hpp"
+#include "platform/gpiod_button_input.hpp"
 #include "platform/headless_display.hpp"
+#include "platform/libcamera_source.hpp"
+#include "platform/reconnecting_source.hpp"
 #include "platform/synthetic_source.hpp"
+#include "platform/v4l2_source.hpp"
+#include "platform/window_display.hpp"
 
 #include <cstdlib>
 #include <filesystem>
@@ -62,9 +68,51 @@ std::unique_ptr<platform::FrameSource> withCard(std::unique_ptr<platform::FrameS
     return std::make_unique<platform::CardSceneSource>(std::move(scene), options);
 }
 
+/// A camera behind the reconnecting wrapper: missing at boot, unplugged or stalled cameras become
+/// the "camera unavailable" state and are reopened with back-off (issue: real devices).
+std::unique_ptr<platform::FrameSource> openCamera(const SourceConfig& c, const std::string& spec)
+{
+    platform::SourceOpener open;
+    if (startsWith(spec, "libcamera")) {
+        platform::LibcameraOptions o;
+        o.camera = spec.size() > 10 ? spec.substr(10) : std::string("0");
+        o.width = c.width;
+        o.height = c.height;
+        o.fps = c.fps;
+        open = [o] { return std::make_unique<platform::LibcameraSource>(o); };
+    } else {
+        platform::V4l2Options o;
+        o.device = spec.substr(5);
+        o.width = c.width;
+        o.height = c.height;
+        o.fps = c.fps;
+        open = [o] { return std::make_unique<platform::V4l2Source>(o); };
+    }
+    auto camera = std::make_unique<platform::ReconnectingSource>(
+        spec, std::move(open), vision::Size{c.width, c.height}, vision::PixelFormat::RGB24);
+    if (camera->state() != platform::CameraState::Running)
+        MIRROR_LOG_WARN("camera %s unavailable at start: %s (retrying)", spec.c_str(),
+                        camera->lastError());
+    return camera;
+}
+
 std::unique_ptr<platform::FrameSource> openSource(const SourceConfig& c)
 {
     const std::string& spec = c.spec;
+    if (spec == "libcamera" || startsWith(spec, "libcamera:") || startsWith(spec, "v4l2:"))
+        return openCamera(c, spec);
+    if (spec == "auto") {
+        // The camera the board has: libcamera first (CSI and USB cameras), then plain V4L2.
+        if (platform::libcameraCameraAvailable()) {
+            MIRROR_LOG_INFO("source auto: libcamera camera found");
+            return openCamera(c, "libcamera:0");
+        }
+        const std::string device = platform::findV4l2CaptureDevice();
+        if (!device.empty()) {
+            MIRROR_LOG_INFO("source auto: V4L2 capture device %s", device.c_str());
+            return openCamera(c, "v4l2:" + device);
+        }
+    }
     if (spec == "synthetic")
         return withCard(
             std::make_unique<platform::SyntheticSource>(c.width, c.height, syntheticFps(c)), c,
@@ -75,7 +123,7 @@ std::unique_ptr<platform::FrameSource> openSource(const SourceConfig& c)
                         c, false);
     if (spec == "demo" || spec == "auto") {
         if (spec == "auto")
-            MIRROR_LOG_INFO("source auto: no camera support in this build, playing the demo scene");
+            MIRROR_LOG_INFO("source auto: no camera found, playing the demo scene");
         std::error_code ec;
         if (std::filesystem::exists(kDemoVideoPath, ec))
             return withCard(std::make_unique<platform::FileSource>(kDemoVideoPath, true,
@@ -88,8 +136,8 @@ std::unique_ptr<platform::FrameSource> openSource(const SourceConfig& c)
             true);
     }
     throw StartupError(kExitSource, "source " + spec +
-                                        ": not supported by this build (allowed: auto, demo, "
-                                        "synthetic, file:PATH)");
+                                        ": unknown (allowed: auto, demo, synthetic, file:PATH, "
+                                        "libcamera[:ID], v4l2:DEVICE)");
 }
 
 /// Where `auto` keeps headless output: systemd's StateDirectory when run as the service.
@@ -112,24 +160,76 @@ std::unique_ptr<platform::FrameSource> makeSource(const SourceConfig& config)
     }
 }
 
-std::unique_ptr<platform::Display> makeDisplay(const DisplayConfig& config)
+std::unique_ptr<platform::Display> makeDisplay(const DisplayConfig& config,
+                                               const std::string& stateDir)
 {
     std::string spec = config.spec;
     if (spec == "auto") {
-        spec = "headless:" + defaultHeadlessDir();
-        MIRROR_LOG_INFO("display auto: no screen support in this build, rendering %s",
-                        spec.c_str());
+        // The panel when a DRM card has a connected connector, else headless output.
+        if (platform::drmDisplayAvailable()) {
+            spec = "drm";
+            MIRROR_LOG_INFO("display auto: DRM/KMS panel found");
+        } else if (platform::windowDisplayAvailable()) {
+            spec = "window";
+            MIRROR_LOG_INFO("display auto: a window on the desktop");
+        } else {
+            spec = "headless:" + defaultHeadlessDir();
+            MIRROR_LOG_INFO("display auto: no connected screen, rendering %s", spec.c_str());
+        }
     }
     try {
         if (startsWith(spec, "headless:"))
             return std::make_unique<platform::HeadlessDisplay>(spec.substr(9), config.width,
                                                                config.height, config.snapshotEvery);
+        if (spec == "window")
+            return std::make_unique<platform::WindowDisplay>(config.width, config.height);
+        if (spec == "drm" || startsWith(spec, "drm:")) {
+            platform::DrmOptions o;
+            o.card = spec.size() > 4 ? spec.substr(4) : std::string();
+            o.mode = config.mode;
+            o.snapshotDir = config.snapshotDir;
+            if (o.snapshotDir.empty() && !stateDir.empty()) {
+                o.snapshotDir = stateDir + "/snapshots";
+                std::error_code ec;
+                std::filesystem::create_directories(o.snapshotDir, ec);
+                if (ec) {
+                    MIRROR_LOG_WARN("display: cannot make %s: %s; no snapshots",
+                                    o.snapshotDir.c_str(), ec.message().c_str());
+                    o.snapshotDir.clear();
+                }
+            }
+            return std::make_unique<platform::DrmDisplay>(o);
+        }
     } catch (const std::exception& e) {
         throw StartupError(kExitDisplay, e.what());
     }
-    throw StartupError(kExitDisplay, "display " + spec +
-                                         ": not supported by this build (allowed: auto, "
-                                         "headless:DIR)");
+    throw StartupError(
+        kExitDisplay,
+        "display " + spec + ": unknown (allowed: auto, headless:DIR, drm[:CARD], window)");
+}
+
+std::unique_ptr<platform::ButtonInput> makeButtons(const ButtonsConfig& config)
+{
+    if (!config.enabled)
+        return nullptr;
+    platform::GpiodButtonOptions o;
+    o.chip = config.chip;
+    for (const std::int64_t line : config.lines)
+        o.lines.push_back(static_cast<unsigned>(line));
+    static_assert(static_cast<int>(ButtonsConfig::Bias::PullDown) ==
+                  static_cast<int>(platform::GpioBias::PullDown));
+    o.bias = static_cast<platform::GpioBias>(config.bias);
+    o.press.debounceNs = static_cast<std::int64_t>(config.debounceMs) * 1'000'000;
+    o.press.longPressNs = static_cast<std::int64_t>(config.longPressMs) * 1'000'000;
+    o.press.activeLow = config.activeLow;
+    try {
+        auto buttons = std::make_unique<platform::GpiodButtonInput>(o);
+        MIRROR_LOG_INFO("buttons: %s", buttons->description());
+        return buttons;
+    } catch (const std::exception& e) {
+        MIRROR_LOG_WARN("buttons: %s; running without buttons", e.what());
+        return nullptr;
+    }
 }
 
 }  // namespace firmware

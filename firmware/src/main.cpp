@@ -8,6 +8,7 @@
 #include "firmware/frame_loop.hpp"
 #include "firmware/log.hpp"
 #include "firmware/startup_error.hpp"
+#include "platform/serial_console.hpp"
 #include "platform/stdin_console.hpp"
 
 #include <fcntl.h>
@@ -67,21 +68,46 @@ extern "C" void onStopSignal(int)
 
 const char* const kFooter = R"(
 Sources (--source, [source] spec):
-  auto          the camera when one is supported and present, else the demo scene
+  auto          a libcamera camera, else a V4L2 capture device, else the demo scene
   demo          Debian's opencv-doc sample video Megamind.avi with a synthetic coloured card moving
                 over it; the fully synthetic scene when the video is not installed
   synthetic     a procedural scene (no files needed)
   file:PATH     a video file, a folder of PNG/JPEG frames, or a glob ("file:/data/f*.png");
                 [source] loop and rate ("native", "max" or an fps number) control replay
+  libcamera[:ID] a camera through libcamera (index or id as `cam -l` lists it); [source] width,
+                height, fps
+  v4l2:DEVICE   a V4L2 capture device (/dev/videoN): YUYV, RGB24, or MJPEG decoded
+  A camera missing at boot, unplugged or stalled shows "camera unavailable" and is retried with
+  back-off (0.5 s doubling to 8 s) until it is back.
 
 Displays (--display, [display] spec):
-  auto          the best display present (for now: headless in $STATE_DIRECTORY or /var/lib/mirror)
+  auto          the panel (DRM/KMS) when a connected one exists, else a desktop window when a
+                display server is there, else headless in $STATE_DIRECTORY or /var/lib/mirror
+  drm[:CARD]    the panel through DRM/KMS (GBM + EGL, page flips on vsync); [display] mode
+                "preferred", "WxH" or "WxH@Hz"; `snapshot` PNGs in [display] snapshot_dir
+  window        an X11 window for development; keys: n/p next/previous overlay, o off, t train
+                the card, d debug HUD, h HUD, s snapshot, q quit
   headless:DIR  EGL without a window system (Mesa's software renderer when no GPU); PNG snapshots
                 in DIR every [display] snapshot_every frames and on the console's `snapshot`, and a
                 one-line summary per second in DIR/summary.log
 
-Diagnostics console (on standard input when [console] stdin = true):
-  help, status, snapshot, config, quit
+Diagnostics console (on standard input when [console] stdin = true, and on the serial port
+[console] serial, e.g. /dev/ttyS0 at 115200 8N1):
+  help, status, selftest, log [N], version, snapshot, config, faces, debug [on|off],
+  overlay [next|prev|off|list|NAME|mode global|per_face], buttons, card [train|reset],
+  reboot-mirror (rebuilds the pipeline, not the machine), quit
+
+Overlays ([overlay]): hats and glasses from the catalogue (default: the installed
+  /usr/share/mirror/overlays/catalogue.toml, or assets/overlays/ of the source tree). Each entry
+  names its OBJ meshes, material, anchor on the head and scale (assets/overlays/FORMAT.md): adding
+  a hat is adding files. mode "global" (one for everyone) or "per_face" (buttons change the
+  nearest face). The last choice is kept in [state] dir/overlay.toml.
+
+Buttons ([buttons], libgpiod): chip = "gpiochip0", lines = [17, 27] (button 1, 2), active_low,
+  bias = "pull-up", debounce_ms, long_press_ms, short_press = ["next", "prev"],
+  long_press = ["train-card", "toggle-debug"]. Raspberry Pi header: button 1 between pin 11
+  (BCM17) and pin 9 (GND), button 2 between pin 13 (BCM27) and pin 14 (GND); no resistors (the
+  internal pull-ups are used). A missing or busy chip is one warning; the mirror runs on.
 
 Config: TOML, validated strictly; every problem is printed as FILE:LINE:COL: key: what is wrong.
   The schema with every key is in config/SCHEMA.md; --print-config shows the effective values.
@@ -151,20 +177,42 @@ int main(int argc, char** argv)
     firmware::setLogLevel(config.log.level);
     std::signal(SIGPIPE, SIG_IGN);
     try {
-        auto frameSource = firmware::makeSource(config.source);
-        auto frameDisplay = firmware::makeDisplay(config.display);
-        firmware::FrameLoop loop(config, std::move(frameSource), std::move(frameDisplay));
         std::unique_ptr<platform::StdinConsole> console;
-        if (config.console.stdinEnabled) {
+        if (config.console.stdinEnabled)
             console = std::make_unique<platform::StdinConsole>();
-            loop.attachConsole(console.get());
+        // The technician's serial port: missing or unusable is one warning, the mirror runs on.
+        std::unique_ptr<platform::SerialConsole> serial;
+        if (!config.console.serial.empty()) {
+            try {
+                platform::SerialConsoleOptions o;
+                o.baud = config.console.baud;
+                o.maxLineLength = static_cast<std::size_t>(config.console.maxLineLength);
+                serial = std::make_unique<platform::SerialConsole>(config.console.serial, o);
+                MIRROR_LOG_INFO("console: %s", serial->description());
+            } catch (const std::exception& e) {
+                MIRROR_LOG_WARN("console: %s; no serial console", e.what());
+            }
         }
-        gLoop = &loop;
         std::signal(SIGINT, onStopSignal);
         std::signal(SIGTERM, onStopSignal);
-        const int code = loop.run(frames);
-        gLoop = nullptr;
-        return code;
+        // `reboot-mirror` rebuilds the pipeline (source, display, stages, renderer) in this
+        // process: everything of the old one is released before the new one opens the devices.
+        for (;;) {
+            auto frameSource = firmware::makeSource(config.source);
+            auto frameDisplay = firmware::makeDisplay(config.display, config.state.dir);
+            firmware::FrameLoop loop(config, std::move(frameSource), std::move(frameDisplay));
+            if (console)
+                loop.attachConsole(console.get());
+            if (serial)
+                loop.attachSerialConsole(serial.get());
+            loop.attachButtons(firmware::makeButtons(config.buttons));
+            gLoop = &loop;
+            const int code = loop.run(frames);
+            gLoop = nullptr;
+            if (!loop.restartRequested())
+                return code;
+            MIRROR_LOG_INFO("reboot-mirror: rebuilding the pipeline");
+        }
     } catch (const firmware::StartupError& e) {
         std::cerr << "mirror: " << e.what() << '\n';
         return e.exitCode();

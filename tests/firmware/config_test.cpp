@@ -345,10 +345,12 @@ const std::map<std::string, std::vector<std::string>> kBadFiles = {
     {"bad_syntax.toml",
      {R"(4:8: config: Error while parsing key-value pair: expected value, saw '\n')"}},
     {"bad_unknown_key.toml",
-     {"3:1: display.widht: unknown key (allowed: spec, width, height, fit, mirror, hud, "
-      "snapshot_every)"}},
+     {"3:1: display.widht: unknown key (allowed: spec, width, height, fit, mirror, hud, debug, "
+      "mode, snapshot_dir, snapshot_every)"}},
     {"bad_unknown_section.toml",
-     {"4:2: camera: unknown section (allowed: source, display, log, console, vision, card, state)"}},
+     {"4:2: camera: unknown section (allowed: source, display, log, console, vision, faces, "
+      "overlay, "
+      "buttons, card, state)"}},
     {"bad_wrong_type.toml", {"2:9: source.width: expected integer, got string"}},
     {"bad_float_for_int.toml", {"2:9: source.width: expected integer, got float"}},
     {"bad_out_of_range.toml", {"2:9: display.width: 4000000 is out of range (allowed: 16..7680)"}},
@@ -379,10 +381,12 @@ const std::map<std::string, std::vector<std::string>> kBadFiles = {
       "5:7: source.fps: expected float, got string",
       R"(8:7: display.fit: unknown value "stretch" (allowed: "cover", "contain"))",
       "9:10: display.mirror: expected boolean, got integer",
-      "10:1: display.colour: unknown key (allowed: spec, width, height, fit, mirror, hud, "
-      "snapshot_every)",
+      "10:1: display.colour: unknown key (allowed: spec, width, height, fit, mirror, hud, debug, "
+      "mode, snapshot_dir, snapshot_every)",
       "13:22: log.summary_interval_s: -1 is out of range (allowed: 0..3600)",
-      "15:2: extras: unknown section (allowed: source, display, log, console, vision, card, state)"}},
+      "15:2: extras: unknown section (allowed: source, display, log, console, vision, faces, "
+      "overlay, "
+      "buttons, card, state)"}},
 };
 
 TEST(ConfigBadFiles, EachReportsExactlyItsProblems)
@@ -645,7 +649,7 @@ TEST(ConfigSet, ProblemsNameTheSetByIndexAfterTheFileProblems)
             R"(--set:3:1: config: expected KEY=VALUE, got "nonsense" (allowed: KEY is )"
             R"(section.key, VALUE is TOML))",
             "--set:4:9: display.widht: unknown key (allowed: spec, width, height, fit, mirror, "
-            "hud, snapshot_every)",
+            "hud, debug, mode, snapshot_dir, snapshot_every)",
             "--set:5:13: display.hud: Error while parsing value: could not determine value type "
             "(allowed: true, false)",
             "--set:6:9: display: expected table, got integer",

@@ -5,6 +5,7 @@
 #include "firmware/device_factory.hpp"
 #include "firmware/frame_loop.hpp"
 #include "firmware/log.hpp"
+#include "preloaded_face_source.hpp"
 #include "test_paths.hpp"
 
 #include <fcntl.h>
@@ -12,6 +13,8 @@
 #include <unistd.h>
 
 #include <cstdio>
+#include <memory>
+#include <vector>
 
 namespace {
 
@@ -66,6 +69,68 @@ TEST(FrameLoopAllocations, SteadyStateLoopMakesNoHeapAllocations)
         "GL driver and other shared libraries %ld (%.1f per frame)\n",
         counts.cxxNew, counts.ownMalloc, counts.foreignMalloc,
         static_cast<double>(counts.foreignMalloc) / 300.0);
+    EXPECT_EQ(counts.cxxNew, 0);
+    EXPECT_EQ(counts.ownMalloc, 0);
+}
+
+}  // namespace
+
+namespace {
+
+TEST(FrameLoopAllocations, TrackingRealFacesMakesNoHeapAllocations)
+{
+    if (!testing_support::allocationCountingAvailable())
+        GTEST_SKIP() << "allocation hooks are not compiled in sanitizer builds";
+
+    firmware::Config config;
+    config.source.spec = "preloaded";
+    config.display.spec = "headless:" + testing_support::freshOutputDir("frame_loop_alloc_faces");
+    config.display.width = 640;
+    config.display.height = 360;
+    config.display.hud = true;
+    config.display.debug = true;  // the face debug layer draws inside the counted frames
+    config.display.snapshotEvery = 100;
+    config.log.summaryIntervalS = 0.05;
+    config.card.enabled = false;
+    config.faces.enabled = true;
+    config.state.dir = testing_support::freshOutputDir("frame_loop_alloc_faces_state");
+    const int devNull = ::open("/dev/null", O_WRONLY);
+    firmware::setLogFd(devNull);
+
+    firmware::FrameLoop loop(config, std::make_unique<PreloadedFaceSource>(40),
+                             firmware::makeDisplay(config.display));
+    FakeConsole console;
+    loop.attachConsole(&console);
+    for (int i = 0; i < 30; ++i)
+        ASSERT_TRUE(loop.step());
+
+    testing_support::AllocationCounts counts;
+    int framesWithFace = 0;
+    {
+        testing_support::AllocationScope scope;
+        for (int i = 0; i < 200; ++i) {
+            if (i % 50 == 10)
+                console.type(i % 100 == 10 ? "faces\n" : "status\ndebug off\ndebug on\n");
+            if (!loop.step())
+                break;
+            for (const vision::TrackedFace& f : loop.lastFrameState().faces)
+                if (f.shown()) {
+                    ++framesWithFace;
+                    break;
+                }
+        }
+        counts = scope.counts();
+    }
+    firmware::setLogFd(2);
+    ::close(devNull);
+
+    EXPECT_EQ(loop.framesShown(), 230u);
+    EXPECT_GE(framesWithFace, 195) << "the face should be shown in (nearly) every counted frame";
+    EXPECT_NE(console.output().find("face 1: shown"), std::string_view::npos) << console.output();
+    std::printf(
+        "faces: shown in %d of 200 counted frames; allocations: operator new %ld, our "
+        "malloc %ld, GL driver and other shared libraries %ld\n",
+        framesWithFace, counts.cxxNew, counts.ownMalloc, counts.foreignMalloc);
     EXPECT_EQ(counts.cxxNew, 0);
     EXPECT_EQ(counts.ownMalloc, 0);
 }

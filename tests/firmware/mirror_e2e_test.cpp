@@ -206,3 +206,43 @@ TEST(MirrorEndToEnd, BadCommandLineIsExitCode2)
 }
 
 }  // namespace
+
+namespace {
+
+TEST(MirrorEndToEnd, TracksTheTalkingFaceAndAnswersTheTechnician)
+{
+    // The FGNet talking face: the face is found and shown within the first frames, the debug
+    // HUD draws it, and the console's diagnostics commands answer.
+    const std::string out = testing_support::freshOutputDir("e2e_faces_out");
+    const RunResult r =
+        runMirror("--source file:" + testing_support::sharedData("fgnet_talking_face/images") +
+                      " --display headless:" + out +
+                      " --frames 40 --set display.debug=true --set "
+                      "'source.rate=\"max\"' --set source.loop=false",
+                  "version\nfaces\nselftest\nlog 3\ndebug off\ndebug on");
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_NE(r.output.find("faces: 1 shown (was 0)"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("mirror " MIRROR_VERSION), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("PASS state:"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("PASS faces: cascade"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("debug: off"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("debug: on"), std::string::npos) << r.output;
+}
+
+TEST(MirrorEndToEnd, RebootMirrorRebuildsThePipelineAndKeepsRunning)
+{
+    const std::string out = testing_support::freshOutputDir("e2e_reboot_out");
+    const RunResult r = runMirror(
+        "--source synthetic --display headless:" + out + " --frames 20 --set 'source.rate=\"max\"'",
+        "reboot-mirror");
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_NE(r.output.find("reboot-mirror: restarting the pipeline"), std::string::npos)
+        << r.output;
+    EXPECT_NE(r.output.find("rebuilding the pipeline"), std::string::npos) << r.output;
+    // Two runs: the first stopped by the command, the second by the frame limit.
+    EXPECT_NE(r.output.find("stopped (stop requested)"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("stopped (frame limit reached) after 20 frames"), std::string::npos)
+        << r.output;
+}
+
+}  // namespace

@@ -121,9 +121,17 @@ public:
 
     /// Tokenises one line, runs its command and writes the reply to `out`.
     void execute(std::string_view line, platform::Console& out) noexcept;
+    /// Consoles the shell serves at once (standard input and a serial port), each with its own
+    /// line assembly, so input typed on one never splices into a line from the other.
+    static constexpr std::size_t kChannels = 2;
+
     /// Reads what is waiting on the console now (at most readBudget bytes; the rest waits for
     /// the next call), assembles lines and executes each, writing replies and errors back.
-    PollResult poll(platform::Console& console) noexcept;
+    /// `channel` (< kChannels) keeps this console's partial line apart from the others'.
+    PollResult poll(platform::Console& console, std::size_t channel = 0) noexcept;
+    /// Terminal style of one channel (channel 0 takes ShellOptions::prompt and crlf): a serial
+    /// terminal wants a prompt and CR LF line ends, a pipe on standard input neither.
+    void setChannelStyle(std::size_t channel, bool prompt, bool crlf) noexcept;
 
     const ShellOptions& options() const noexcept { return options_; }
     bool hasCommand(std::string_view name) const noexcept { return find(name) != nullptr; }
@@ -144,13 +152,19 @@ private:
     void writePrompt(platform::Console& out) noexcept;
 
     ShellOptions options_;
-    LineAssembler assembler_;
+    std::vector<LineAssembler> assemblers_;  ///< one per channel
     std::vector<Command> commands_;
     std::size_t synopsisWidth_ = 0;
     std::unique_ptr<char[]> readBuffer_;
     Args args_;
     Reply reply_;
-    bool promptShown_ = false;
+    std::array<bool, kChannels> promptShown_{};
+    struct Style {
+        bool prompt = false;
+        bool crlf = false;
+    };
+    std::array<Style, kChannels> styles_{};
+    std::size_t channel_ = 0;  ///< the channel being served by poll() (0 for execute())
 };
 
 }  // namespace firmware

@@ -39,7 +39,10 @@ struct DisplayConfig {
     enum class Fit { Cover, Contain } fit = Fit::Cover;
     bool mirror = true;
     bool hud = true;
+    bool debug = false;      ///< draw face boxes, corners and roll axes (the debug HUD)
     int snapshotEvery = 30;  ///< frames between automatic snapshots (headless); 0 = on command only
+    std::string mode;        ///< drm: "" or "preferred", "WxH" or "WxH@Hz"
+    std::string snapshotDir;  ///< drm: where `snapshot` writes PNGs; "" = the state folder
 };
 
 struct LogConfig {
@@ -50,12 +53,53 @@ struct LogConfig {
 struct ConsoleConfig {
     bool stdinEnabled = true;  ///< the shell on stdin/stdout
     int maxLineLength = 256;   ///< longer lines are rejected with one error line
+    std::string serial;        ///< serial port of the diagnostics console; "" = none
+    int baud = 115200;
+};
+
+struct ButtonsConfig {
+    bool enabled = true;
+    std::string chip = "gpiochip0";           ///< name, number, label or /dev path
+    std::vector<std::int64_t> lines{17, 27};  ///< line offsets; button n is the n-th
+    bool activeLow = true;
+    enum class Bias { AsIs, Disable, PullUp, PullDown } bias = Bias::PullUp;
+    int debounceMs = 30;
+    int longPressMs = 800;
+    std::vector<std::string> shortPress{"next", "prev"};
+    std::vector<std::string> longPress{"train-card", "toggle-debug"};
+};
+
+struct OverlayConfig {
+    bool enabled = true;
+    std::string catalogue;  ///< catalogue TOML; "" = the installed one (or the source tree's)
+    enum class Mode { Global, PerFace } mode = Mode::Global;
+    int fadeMs = 250;
+    std::string initial = "top_hat";  ///< the `default` key: worn at the very first start
+    double verticalFovDeg = 50.0;     ///< the camera's, for the overlays' perspective
 };
 
 struct VisionConfig {
     bool chromaticity =
         true;  ///< ch. 3: normalised-RGB planes (forced on when a colour tracker runs)
     bool deinterlace = false;  ///< 4.2.4: remove interlace tearing first
+};
+
+struct FacesConfig {
+    bool enabled = true;
+    std::string cascade = "/usr/share/opencv4/haarcascades/haarcascade_frontalface_default.xml";
+    int downscale = 2;  ///< motion and detection run at the frame size / downscale
+    enum class Tracking { None, Translation, Similarity, Affine } tracking = Tracking::Similarity;
+    bool motionMask = true;
+    double scaleFactor = 1.1;
+    int minNeighbors = 3;
+    int minSize = 24;  ///< smallest face box at the working resolution
+    int confirmFrames = 2;
+    int graceFrames = 5;
+    int maxFaces = 8;
+    int detectionBudget = 5000;  ///< detector windows per frame; 0 = whole scan every frame
+    double staticDropS = 10.0;   ///< a face that has not moved this long is background
+    int motionComponents = 3;
+    double motionLearningRate = 0.005;
 };
 
 struct CardConfig {
@@ -78,6 +122,9 @@ struct Config {
     LogConfig log;
     ConsoleConfig console;
     VisionConfig vision;
+    FacesConfig faces;
+    OverlayConfig overlay;
+    ButtonsConfig buttons;
     CardConfig card;
     StateConfig state;
     /// Where it came from, e.g. "/etc/mirror/mirror.toml" or "built-in defaults".

@@ -3,6 +3,7 @@
 // "synthetic", "file:PATH", "headless:DIR", ...). One implementation per device, chosen here only.
 
 #include "firmware/config.hpp"
+#include "platform/button_input.hpp"
 #include "platform/display.hpp"
 #include "platform/frame_source.hpp"
 
@@ -16,7 +17,12 @@ inline constexpr const char* kDemoVideoPath =
 
 /// Opens the source. Throws StartupError(kExitSource) with one line on failure.
 std::unique_ptr<platform::FrameSource> makeSource(const SourceConfig& config);
-/// Opens the display. Throws StartupError(kExitDisplay) with one line on failure.
-std::unique_ptr<platform::Display> makeDisplay(const DisplayConfig& config);
+/// Opens the display. Throws StartupError(kExitDisplay) with one line on failure. A DRM panel
+/// without [display] snapshot_dir keeps its snapshots in `stateDir`/snapshots (none when empty).
+std::unique_ptr<platform::Display> makeDisplay(const DisplayConfig& config,
+                                               const std::string& stateDir = {});
+/// Opens the GPIO buttons, or returns null: when disabled, and when the chip is missing or busy
+/// (logged as one warning: the mirror runs on with its other inputs).
+std::unique_ptr<platform::ButtonInput> makeButtons(const ButtonsConfig& config);
 
 }  // namespace firmware

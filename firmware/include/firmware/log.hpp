@@ -15,6 +15,14 @@ void setLogFd(int fd) noexcept;
 
 void logf(LogLevel level, const char* format, ...) noexcept __attribute__((format(printf, 2, 3)));
 
+/// The last kLogRingLines lines (any level that was logged) are kept in memory for the console's
+/// `log` command: a technician on the serial port sees what happened before they plugged in.
+inline constexpr int kLogRingLines = 200;
+/// Calls `emit` for each of the last `maxLines` kept lines, oldest first (each ends with '\n').
+/// Returns how many were emitted. No allocation.
+int forEachRecentLogLine(int maxLines, void (*emit)(const char* line, void* context),
+                         void* context) noexcept;
+
 /// Seconds since the process started, for log stamps and uptime.
 double uptimeSeconds() noexcept;
 

@@ -1,0 +1,51 @@
+#include "firmware/face_smoother.hpp"
+
+#include <algorithm>
+
+namespace firmware {
+
+FaceSmoother::Slot* FaceSmoother::slotFor(int faceId) noexcept
+{
+    Slot* free = nullptr;
+    for (Slot& s : slots_) {
+        if (s.faceId == faceId)
+            return &s;
+        if (s.faceId == 0 && free == nullptr)
+            free = &s;
+    }
+    if (free != nullptr) {
+        *free = Slot{};
+        free->faceId = faceId;
+    }
+    return free;
+}
+
+std::span<const vision::TrackedFace> FaceSmoother::apply(std::span<const vision::TrackedFace> faces,
+                                                         std::int64_t timeNs) noexcept
+{
+    // Seconds since the last frame; the first frame and clock jumps get a nominal 30 fps step.
+    float dt = lastNs_ != 0 ? static_cast<float>(timeNs - lastNs_) * 1e-9f : 1.f / 30.f;
+    if (!(dt > 0.f && dt < 1.f))
+        dt = 1.f / 30.f;
+    lastNs_ = timeNs;
+    for (Slot& s : slots_)
+        s.seen = false;
+    const std::size_t n = std::min(faces.size(), out_.size());
+    for (std::size_t i = 0; i < n; ++i) {
+        vision::TrackedFace f = faces[i];
+        if (Slot* s = slotFor(f.id)) {
+            s->seen = true;
+            f.centre.x = s->x.filter(f.centre.x, dt);
+            f.centre.y = s->y.filter(f.centre.y, dt);
+            f.size = s->size.filter(f.size, dt);
+            f.rollDegrees = s->roll.filter(f.rollDegrees, dt);
+        }
+        out_[i] = f;
+    }
+    for (Slot& s : slots_)
+        if (!s.seen)
+            s.faceId = 0;  // dropped: its filters start afresh if the id ever came back
+    return {out_.data(), n};
+}
+
+}  // namespace firmware

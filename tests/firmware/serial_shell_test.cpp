@@ -1,0 +1,154 @@
+// The diagnostics shell on a serial console, through a pseudo-terminal: what a technician at a
+// terminal emulator sees.
+#include "alloc_counter.hpp"
+#include "firmware/command_shell.hpp"
+#include "platform/serial_console.hpp"
+
+#include <fcntl.h>
+#include <gtest/gtest.h>
+#include <poll.h>
+#include <stdlib.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
+#include <random>
+#include <string>
+#include <thread>
+#include <vector>
+
+using firmware::Args;
+using firmware::CommandShell;
+using firmware::Reply;
+using firmware::ShellOptions;
+using platform::SerialConsole;
+
+namespace {
+
+struct Terminal {
+    int master = -1;
+    std::string device;
+    Terminal()
+    {
+        master = ::posix_openpt(O_RDWR | O_NOCTTY);
+        EXPECT_GE(master, 0) << std::strerror(errno);
+        ::grantpt(master);
+        ::unlockpt(master);
+        device = ::ptsname(master);
+    }
+    ~Terminal() { ::close(master); }
+    void type(std::string_view text) const
+    {
+        ASSERT_EQ(::write(master, text.data(), text.size()), static_cast<ssize_t>(text.size()));
+    }
+    std::string screen() const
+    {
+        std::string out;
+        pollfd p{master, POLLIN, 0};
+        while (::poll(&p, 1, 50) > 0 && (p.revents & POLLIN)) {
+            char buffer[4096];
+            const ssize_t n = ::read(master, buffer, sizeof buffer);
+            if (n <= 0)
+                break;
+            out.append(buffer, static_cast<std::size_t>(n));
+        }
+        return out;
+    }
+};
+
+/// The shell as the firmware sets it up for a serial port: prompt, CR LF line ends.
+struct SerialShell {
+    Terminal terminal;
+    // The firmware gives the console the shell's line limit, so echo stops where the shell cuts.
+    SerialConsole console{terminal.device, {.maxLineLength = 32}};
+    CommandShell shell{
+        ShellOptions{.maxLineLength = 32, .readBudget = 256, .prompt = true, .crlf = true}};
+    SerialShell()
+    {
+        shell.add("version", "", "the firmware version",
+                  [](const Args&, Reply& reply) { reply.line("mirror 0.1.0"); });
+    }
+    /// Polls like the frame loop would, a few frames' worth.
+    void frames(int n)
+    {
+        for (int i = 0; i < n; ++i) {
+            shell.poll(console);
+            ::usleep(1000);
+        }
+    }
+};
+
+}  // namespace
+
+TEST(SerialShell, EchoesTheCommandAndAnswersWithCrLf)
+{
+    SerialShell s;
+    s.frames(1);
+    EXPECT_EQ(s.terminal.screen(), "> ");
+    s.terminal.type("verz\x7fsion\r");
+    s.frames(20);
+    EXPECT_EQ(s.terminal.screen(), "verz\b \bsion\r\nmirror 0.1.0\r\n> ");
+}
+
+TEST(SerialShell, ALongLineIsDroppedWithOneNotice)
+{
+    SerialShell s;
+    s.frames(1);
+    s.terminal.screen();
+    s.terminal.type(std::string(100, 'a') + "\r");
+    s.frames(20);
+    EXPECT_EQ(s.terminal.screen(),
+              std::string(32, 'a') + "\r\nerror: line too long (max 32 characters)\r\n> ");
+    s.terminal.type("version\r");
+    s.frames(20);
+    EXPECT_EQ(s.terminal.screen(), "version\r\nmirror 0.1.0\r\n> ");
+}
+
+TEST(SerialShell, AFloodOfRandomBytesIsReadInBoundedPiecesWithoutAllocating)
+{
+    SerialShell s;
+    s.frames(1);
+    constexpr std::size_t kFlood = 1 << 20;
+    std::vector<char> noise(kFlood);
+    std::mt19937 random(7);
+    for (char& c : noise)
+        c = static_cast<char>(random() & 0xFF);
+    std::thread flood([&] {
+        for (std::size_t sent = 0; sent < kFlood;) {
+            const ssize_t n = ::write(s.terminal.master, noise.data() + sent,
+                                      std::min<std::size_t>(4096, kFlood - sent));
+            if (n <= 0)
+                break;
+            sent += static_cast<std::size_t>(n);
+        }
+    });
+    std::size_t received = 0;
+    std::size_t largest = 0;
+    testing_support::AllocationCounts counts;
+    {
+        testing_support::AllocationScope scope;
+        while (received < kFlood) {
+            const auto result = s.shell.poll(s.console);
+            received += result.bytesRead;
+            largest = std::max(largest, result.bytesRead);
+            if (result.bytesRead == 0)
+                ::usleep(100);
+        }
+        counts = scope.counts();
+    }
+    flood.join();
+    EXPECT_EQ(received, kFlood);
+    EXPECT_LE(largest, 256u);
+    if (testing_support::allocationCountingAvailable()) {
+        EXPECT_EQ(counts.cxxNew, 0);
+        EXPECT_EQ(counts.ownMalloc, 0);
+    }
+    // The technician presses Enter and is answered again.
+    s.terminal.type("\rversion\r");
+    std::string seen;
+    for (int i = 0; i < 200 && seen.find("mirror 0.1.0\r\n> ") == std::string::npos; ++i) {
+        s.frames(1);
+        seen += s.terminal.screen();
+    }
+    EXPECT_NE(seen.find("mirror 0.1.0\r\n> "), std::string::npos);
+}

@@ -1,0 +1,122 @@
+// A camera that vanishes and comes back: the loop logs the loss once and the return once, shows a
+// calm "camera unavailable" screen (never a frozen frame), answers the console meanwhile, and
+// resumes tracking when frames come back, without allocating while it waits.
+#include "alloc_counter.hpp"
+#include "fake_console.hpp"
+#include "firmware/device_factory.hpp"
+#include "firmware/frame_loop.hpp"
+#include "firmware/log.hpp"
+#include "test_paths.hpp"
+
+#include <fcntl.h>
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <fstream>
+#include <opencv2/imgcodecs.hpp>
+#include <sstream>
+#include <string>
+
+namespace {
+
+/// Grey frames with a moving bright bar; Lost while `lost` is set.
+class FlakySource final : public platform::FrameSource {
+public:
+    FlakySource() : image_(160, 120, vision::PixelFormat::RGB24) {}
+    const char* description() const noexcept override { return "flaky test camera"; }
+    vision::Size size() const noexcept override { return {160, 120}; }
+    vision::PixelFormat format() const noexcept override { return vision::PixelFormat::RGB24; }
+    platform::SourceStatus next(vision::Frame& frame) noexcept override
+    {
+        if (lost)
+            return platform::SourceStatus::Lost;
+        const vision::ImageView v = image_.view();
+        for (int y = 0; y < v.height; ++y)
+            for (int x = 0; x < v.width * 3; ++x)
+                v.row(y)[x] = static_cast<std::uint8_t>(
+                    (x / 3 + static_cast<int>(sequence_)) % 40 < 8 ? 220 : 90);
+        frame.image = image_.view();
+        frame.sequence = sequence_++;
+        return platform::SourceStatus::Ok;
+    }
+    const char* lastError() const noexcept override { return "test camera unplugged"; }
+    bool lost = false;
+
+private:
+    vision::ImageBuffer image_;
+    std::uint64_t sequence_ = 0;
+};
+
+std::string readFile(const std::string& path)
+{
+    std::ifstream in(path);
+    std::stringstream s;
+    s << in.rdbuf();
+    return s.str();
+}
+
+TEST(SourceLoss, CalmScreenWhileLostOneLogLineEachWayAndBackToFrames)
+{
+    firmware::Config config;
+    const std::string out = testing_support::freshOutputDir("source_loss");
+    config.display.spec = "headless:" + out;
+    config.display.width = 320;
+    config.display.height = 240;
+    config.display.snapshotEvery = 0;
+    config.card.enabled = false;
+    config.faces.enabled = false;
+    config.log.summaryIntervalS = 0;
+    config.state.dir = testing_support::freshOutputDir("source_loss_state");
+    const std::string logPath = out + "/log.txt";
+    const int logFd = ::open(logPath.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    firmware::setLogFd(logFd);
+
+    auto source = std::make_unique<FlakySource>();
+    FlakySource* camera = source.get();
+    firmware::FrameLoop loop(config, std::move(source), firmware::makeDisplay(config.display));
+    FakeConsole console;
+    loop.attachConsole(&console);
+    for (int i = 0; i < 5; ++i)
+        ASSERT_TRUE(loop.step());
+
+    camera->lost = true;
+    console.type("snapshot\n");
+    testing_support::AllocationCounts counts;
+    {
+        testing_support::AllocationScope scope;
+        for (int i = 0; i < 6; ++i)
+            ASSERT_TRUE(loop.step());  // each lost poll waits 50 ms
+        counts = scope.counts();
+    }
+    console.type("status\nselftest\n");
+    ASSERT_TRUE(loop.step());
+    camera->lost = false;
+    for (int i = 0; i < 5; ++i)
+        ASSERT_TRUE(loop.step());
+    firmware::setLogFd(2);
+    ::close(logFd);
+
+    const std::string log = readFile(logPath);
+    EXPECT_NE(log.find("source lost: test camera unplugged (retrying)"), std::string::npos) << log;
+    EXPECT_EQ(log.find("source lost"), log.rfind("source lost")) << "logged once: " << log;
+    EXPECT_NE(log.find("source is back"), std::string::npos) << log;
+    EXPECT_EQ(loop.framesShown(), 10u);
+    EXPECT_NE(console.output().find("[LOST]"), std::string_view::npos) << console.output();
+    EXPECT_NE(console.output().find("FAIL camera"), std::string_view::npos) << console.output();
+    if (testing_support::allocationCountingAvailable()) {
+        EXPECT_EQ(counts.cxxNew, 0);
+        EXPECT_EQ(counts.ownMalloc, 0);
+    }
+    // The snapshot asked for while the camera was away shows the calm screen: dark slate, no
+    // stripes of the last frame.
+    const std::string shot(loop.display().lastSnapshot());
+    ASSERT_FALSE(shot.empty());
+    const cv::Mat image = cv::imread(shot, cv::IMREAD_COLOR);
+    ASSERT_FALSE(image.empty()) << shot;
+    const cv::Vec3b corner = image.at<cv::Vec3b>(5, image.cols - 5);
+    EXPECT_NEAR(corner[0], 36, 3);  // B of (0.09, 0.11, 0.14)
+    EXPECT_NEAR(corner[1], 28, 3);
+    EXPECT_NEAR(corner[2], 23, 3);
+}
+
+}  // namespace
