@@ -1,7 +1,10 @@
 // mirror-eval: evaluates the vision core on recorded or generated sequences with ground truth.
-// One sub-command per tracker: `card` now; later issues add `detect`, `roll`, `track`.
+// One sub-command per tracker: `card` (issue 3), `detect`, `roll` and `track` (issue 4).
 
 #include "card_eval.hpp"
+#include "detect_eval.hpp"
+#include "roll_eval.hpp"
+#include "track_eval.hpp"
 
 #include <CLI/CLI.hpp>
 #include <cstdio>
@@ -27,8 +30,85 @@ int main(int argc, char** argv)
     cardCmd->add_option("--per-frame", card.perFrameCsv,
                         "also write the tracker's per-frame corners and errors to this CSV");
 
+    mirror_eval::DetectEvalOptions detect;
+    CLI::App* detectCmd =
+        app.add_subcommand("detect",
+                           "our Viola-Jones detector on a CMU/MIT set (6-point truth) and beside "
+                           "cv::CascadeClassifier with the same cascade and parameters");
+    detectCmd->add_option("--images", detect.images, "folder of the images")->required();
+    detectCmd->add_option("--truth", detect.truth, "landmarks file, one face per line")->required();
+    detectCmd->add_option("--cascade", detect.cascade, "OpenCV Haar cascade XML")
+        ->capture_default_str();
+    detectCmd->add_option("--scale-factor", detect.scaleFactor)->capture_default_str();
+    detectCmd->add_option("--min-neighbors", detect.minNeighbors)->capture_default_str();
+    detectCmd->add_option("--min-size", detect.minSize, "smallest box side, 0: the window's")
+        ->capture_default_str();
+    detectCmd->add_option("--max-images", detect.maxImages, "only the first N images (0: all)");
+    bool detectQuiet = false;
+    detectCmd->add_flag("--summary-only", detectQuiet, "no per-image lines");
+
+    mirror_eval::RollEvalOptions roll;
+    CLI::App* rollCmd = app.add_subcommand(
+        "roll", "initial roll by point symmetry on rotated crops of the CMU/MIT faces");
+    rollCmd->add_option("--images", roll.images, "folder of the images")->required();
+    rollCmd->add_option("--truth", roll.truth, "landmarks file, one face per line")->required();
+    rollCmd->add_option("--rotate", roll.rotateDegrees, "crops rotate uniformly in +-this")
+        ->capture_default_str();
+    rollCmd->add_option("--seed", roll.seed, "seed of the rotation angles")->capture_default_str();
+    rollCmd->add_option("--cascade", roll.cascade,
+                        "OpenCV Haar cascade XML (default: "
+                        "haarcascade_frontalface_default)");
+    rollCmd->add_option("--corners", roll.corners, "most corners per face")->capture_default_str();
+    rollCmd
+        ->add_option("--corner-distance", roll.cornerDistanceFraction,
+                     "min distance between corners as a fraction of the box side")
+        ->capture_default_str();
+    rollCmd
+        ->add_option("--min-crop", roll.minCropSide,
+                     "crops smaller than this side (px) are resampled up to it; 0: native")
+        ->capture_default_str();
+    rollCmd
+        ->add_option("--corner-blur", roll.cornerBlurFraction,
+                     "Gaussian sigma before corner detection, as a fraction of the box side")
+        ->capture_default_str();
+    rollCmd->add_option("--max-faces", roll.maxFaces, "only the first N faces (0: all)");
+    rollCmd->add_flag("--per-face", roll.perFace, "one line per face");
+
+    mirror_eval::TrackEvalOptions track;
+    CLI::App* trackCmd = app.add_subcommand(
+        "track",
+        "the face pipeline (motion + detection + tracking) over a frame folder, the "
+        "configurations of the dissertation's Table 6");
+    trackCmd->add_option("--frames", track.frames, "folder of frames, in file-name order")
+        ->required();
+    trackCmd
+        ->add_option("--truth", track.truth,
+                     "folder of per-frame truth: FGNet .pts or facegen .txt, by frame stem")
+        ->required();
+    trackCmd
+        ->add_option("--config", track.config, "detector | motion | translation | similarity | all")
+        ->capture_default_str();
+    trackCmd->add_option("--cascade", track.cascade,
+                         "OpenCV Haar cascade XML (default: "
+                         "haarcascade_frontalface_default)");
+    trackCmd->add_option("--downscale", track.downscale, "working resolution = frame / this")
+        ->capture_default_str();
+    trackCmd->add_option("--min-size", track.minSize, "detector min face side, working pixels")
+        ->capture_default_str();
+    trackCmd->add_option("--min-iou", track.minIou, "IoU a match needs")->capture_default_str();
+    trackCmd->add_option("--max-frames", track.maxFrames, "only the first N frames (0: all)");
+    trackCmd->add_flag("--per-frame", track.perFrame, "print every frame's faces and truth");
+
     CLI11_PARSE(app, argc, argv);
     if (cardCmd->parsed())
         return mirror_eval::runCardEval(card, stdout, stderr);
+    if (detectCmd->parsed()) {
+        detect.perImage = !detectQuiet;
+        return mirror_eval::runDetectEval(detect, stdout, stderr);
+    }
+    if (rollCmd->parsed())
+        return mirror_eval::runRollEval(roll, stdout, stderr);
+    if (trackCmd->parsed())
+        return mirror_eval::runTrackEval(track, stdout, stderr);
     return 2;
 }

@@ -1,0 +1,307 @@
+#include "roll_eval.hpp"
+
+#include "detect_eval.hpp"
+#include "face_match.hpp"
+#include "face_truth.hpp"
+#include "vision/corner_detector.hpp"
+#include "vision/face_detector.hpp"
+#include "vision/haar_cascade.hpp"
+#include "vision/roll_estimator.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <exception>
+#include <filesystem>
+#include <map>
+#include <opencv2/core.hpp>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+#include <random>
+#include <stdexcept>
+#include <vector>
+
+namespace mirror_eval {
+
+namespace {
+
+/// Absolute errors (degrees) of one estimator.
+struct Errors {
+    const char* name;
+    std::vector<double> values;
+
+    double mean() const
+    {
+        double sum = 0;
+        for (double x : values)
+            sum += x;
+        return values.empty() ? 0.0 : sum / static_cast<double>(values.size());
+    }
+    double within(double limit) const
+    {
+        const auto n =
+            std::count_if(values.begin(), values.end(), [&](double x) { return x <= limit; });
+        return values.empty() ? 0.0 : static_cast<double>(n) / static_cast<double>(values.size());
+    }
+    double percentile(double q) const
+    {
+        if (values.empty())
+            return 0.0;
+        std::vector<double> v = values;
+        std::sort(v.begin(), v.end());
+        return v[std::min(v.size() - 1,
+                          static_cast<std::size_t>(q * static_cast<double>(v.size())))];
+    }
+};
+
+struct Crop {
+    cv::Mat gray;
+    std::array<vision::Point2f, 3> axis{};  ///< eye midpoint, nose, mouth centre in the crop
+    double rotation = 0.0;
+};
+
+/// The crop: side 3x the eye-mouth distance about the face centre, rotated about it by
+/// `rotation` degrees (clockwise on screen, our roll sense), border replicated; resampled up to
+/// `minSide` when smaller.
+Crop makeCrop(const cv::Mat& image, const LandmarkFace& face, double rotation, int minSide)
+{
+    const vision::Point2f c = face.centre();
+    const double d = face.eyeMouthDistance();
+    int side = static_cast<int>(std::lround(3.0 * d));
+    double scale = 1.0;
+    if (minSide > 0 && side < minSide) {
+        scale = static_cast<double>(minSide) / (3.0 * d);
+        side = minSide;
+    }
+    // OpenCV's positive angle is anticlockwise on screen; ours is clockwise.
+    cv::Mat m = cv::getRotationMatrix2D(cv::Point2f(c.x, c.y), -rotation, scale);
+    m.at<double>(0, 2) += 0.5 * (side - 1) - c.x;
+    m.at<double>(1, 2) += 0.5 * (side - 1) - c.y;
+    Crop crop;
+    crop.rotation = rotation;
+    cv::warpAffine(image, crop.gray, m, cv::Size(side, side), cv::INTER_LINEAR,
+                   cv::BORDER_REPLICATE);
+    const vision::Point2f in[3] = {face.eyeMidpoint(), face.nose, face.mouthCentre};
+    for (int k = 0; k < 3; ++k) {
+        crop.axis[static_cast<std::size_t>(k)] = {
+            static_cast<float>(m.at<double>(0, 0) * in[k].x + m.at<double>(0, 1) * in[k].y +
+                               m.at<double>(0, 2)),
+            static_cast<float>(m.at<double>(1, 0) * in[k].x + m.at<double>(1, 1) * in[k].y +
+                               m.at<double>(1, 2))};
+    }
+    return crop;
+}
+
+int cropSide(const LandmarkFace& face, int minSide)
+{
+    return std::max(static_cast<int>(std::lround(3.0 * face.eyeMouthDistance())), minSide);
+}
+
+}  // namespace
+
+int runRollEval(const RollEvalOptions& o, std::FILE* out, std::FILE* err)
+{
+    try {
+        if (!(o.rotateDegrees >= 0.0 && o.rotateDegrees <= 90.0))
+            throw std::runtime_error("--rotate must be in [0, 90] degrees");
+        if (o.corners < 3 || o.corners > vision::kMaxRollPoints)
+            throw std::runtime_error("--corners must be in [3, " +
+                                     std::to_string(vision::kMaxRollPoints) + "]");
+        if (!(o.cornerBlurFraction >= 0.f && o.cornerBlurFraction < 0.2f))
+            throw std::runtime_error("--corner-blur must be in [0, 0.2)");
+        std::vector<LandmarkFace> truth = loadLandmarkFaces(o.truth);
+        if (o.maxFaces > 0 && static_cast<int>(truth.size()) > o.maxFaces)
+            truth.resize(static_cast<std::size_t>(o.maxFaces));
+
+        std::map<std::string, cv::Mat> images;
+        int largest = 0;
+        for (const LandmarkFace& f : truth) {
+            largest = std::max(largest, cropSide(f, o.minCropSide));
+            if (images.count(f.image))
+                continue;
+            const std::string path = (std::filesystem::path(o.images) / f.image).string();
+            if (!std::filesystem::exists(path))
+                throw std::runtime_error("image " + path + ": no such file");
+            cv::Mat g = cv::imread(path, cv::IMREAD_GRAYSCALE);
+            if (g.empty())
+                throw std::runtime_error("image " + path + ": cannot decode");
+            images.emplace(f.image, std::move(g));
+        }
+        largest += 2;  // rounding of the side
+
+        const std::string cascadePath = o.cascade.empty() ? kDefaultCascade : o.cascade;
+        const vision::HaarCascade cascade = vision::loadHaarCascade(cascadePath);
+        vision::CornerDetectorOptions copt;
+        copt.maxCorners = o.corners;
+        vision::CornerDetector cornerDetector({largest, largest}, copt);
+
+        // The dissertation's own scoring: whole degrees, plain mean, axis through the box centre.
+        vision::RollEstimatorOptions plain;
+        plain.refineToleranceDegrees = 0.f;
+        plain.trimFraction = 0.f;
+        plain.capFraction = 0.f;
+        plain.maxAxisOffsetFraction = 0.f;
+
+        Errors symmetry{"symmetry (ours)", {}};
+        Errors dissertation{"symmetry, dissertation's scoring", {}};
+        Errors lineFit{"line-fit baseline", {}};
+        Errors upright{"assume upright (0)", {}};
+        Errors truthCentre{"diag: symmetry about truth centre", {}};
+        Errors eyeLine{"diag: symmetry vs eye-line truth", {}};
+        Errors truthNoise{"diag: eye-line truth vs axis truth", {}};
+        Errors large{"diag: symmetry, eye-mouth >= 20 px", {}};
+        std::vector<double> cornerCounts, centreOffsets, boxPerEyeMouth;
+        int missed = 0, tooSmall = 0;
+
+        std::fprintf(out, "roll eval: %zu faces of %s; cascade %s\n", truth.size(), o.truth.c_str(),
+                     cascadePath.c_str());
+        const std::string resample = o.minCropSide > 0
+                                         ? ", crops under " + std::to_string(o.minCropSide) +
+                                               " px resampled up to it (same warp)"
+                                         : ", native resolution";
+        std::fprintf(out,
+                     "protocol: square crop 3x eye-mouth distance about the face centre (midpoint "
+                     "of eye midpoint and mouth centre), border replicated, rotated about it by "
+                     "uniform [-%.0f, %.0f] deg (seed %u)%s\n",
+                     o.rotateDegrees, o.rotateDegrees, o.seed, resample.c_str());
+        std::fprintf(out,
+                     "detector: ours, scale factor 1.1, min neighbours 3, min size crop/4; a face "
+                     "counts when a detection holds its eye midpoint and mouth centre (the one "
+                     "closest to the crop centre)\n");
+        std::fprintf(out,
+                     "corners: CornerDetector, at most %d per box, min distance %.3f x box side, "
+                     "on the crop smoothed by a Gaussian of sigma %.3f x box side; roll: "
+                     "estimateRollBySymmetry with its default options about the box centre\n",
+                     o.corners, static_cast<double>(o.cornerDistanceFraction),
+                     static_cast<double>(o.cornerBlurFraction));
+        std::fprintf(out,
+                     "truth roll: orthogonal LS line through eye midpoint, nose, mouth centre, "
+                     "from vertical, clockwise on screen positive (RollEstimate's sense)\n");
+        if (o.perFace)
+            std::fprintf(out, "%-28s %4s %5s %7s %7s %7s %7s %5s %6s\n", "image", "line", "d_px",
+                         "rot", "truth", "ours", "linefit", "pts", "offset");
+
+        std::mt19937 rng(o.seed);
+        std::uniform_real_distribution<double> angle(-o.rotateDegrees, o.rotateDegrees);
+        std::vector<vision::Corner> corners(static_cast<std::size_t>(o.corners));
+        for (const LandmarkFace& f : truth) {
+            const double rotation = angle(rng);  // drawn for every face: same angles per seed
+            const Crop crop = makeCrop(images.at(f.image), f, rotation, o.minCropSide);
+            const double truthRoll = axisRollDegrees(crop.axis[0], crop.axis[1], crop.axis[2]);
+            const int side = crop.gray.cols;
+            const vision::ConstImageView view{crop.gray.data, side, side,
+                                              static_cast<int>(crop.gray.step),
+                                              vision::PixelFormat::Gray8};
+            if (side < cascade.windowWidth || side < cascade.windowHeight) {
+                ++tooSmall;
+                ++missed;
+                continue;
+            }
+            // One detector per crop: its buffers and min size follow the crop (a tool, not the
+            // frame loop).
+            vision::FaceDetectorOptions dopt;
+            dopt.maxFrameSize = {side, side};
+            dopt.minSize = {side / 4, side / 4};
+            vision::FaceDetector detector(cascade, dopt);
+            if (detector.detect(view) < 0)
+                throw std::runtime_error(f.image + ": " + detector.lastError());
+            const vision::Rect* best = nullptr;
+            double bestDistance = 0.0;
+            const double mid = 0.5 * (side - 1);
+            for (const vision::Rect& b : detector.faces()) {
+                const BoxF box = toBoxF(b);
+                if (!contains(box, crop.axis[0]) || !contains(box, crop.axis[2]))
+                    continue;
+                const double dist =
+                    std::hypot(b.x + 0.5 * (b.width - 1) - mid, b.y + 0.5 * (b.height - 1) - mid);
+                if (best == nullptr || dist < bestDistance) {
+                    best = &b;
+                    bestDistance = dist;
+                }
+            }
+            if (best == nullptr) {
+                ++missed;
+                continue;
+            }
+            const vision::Rect box = *best;
+            const vision::Point2f centre{
+                static_cast<float>(box.x) + 0.5f * static_cast<float>(box.width - 1),
+                static_cast<float>(box.y) + 0.5f * static_cast<float>(box.height - 1)};
+            const auto size = static_cast<float>(box.width);
+
+            // Corners at the scale of the facial features (eyes, nostrils, mouth corners) rather
+            // than of pixel noise and JPEG/GIF texture: smoothing in proportion to the face.
+            cv::Mat smooth = crop.gray;
+            if (o.cornerBlurFraction > 0.f)
+                cv::GaussianBlur(crop.gray, smooth, cv::Size(0, 0),
+                                 static_cast<double>(o.cornerBlurFraction * size));
+            const vision::ConstImageView smoothView{
+                smooth.data, side, side, static_cast<int>(smooth.step), vision::PixelFormat::Gray8};
+            cornerDetector.setMinDistance(size * o.cornerDistanceFraction);
+            const int n = cornerDetector.detect(smoothView, box, corners.data(), o.corners);
+            std::vector<vision::Point2f> points;
+            for (int k = 0; k < n; ++k)
+                points.push_back(corners[static_cast<std::size_t>(k)].position);
+
+            const auto ours = vision::estimateRollBySymmetry(points, centre, size);
+            const auto theirs = vision::estimateRollBySymmetry(points, centre, size, plain);
+            const auto line = vision::estimateRollByLineFit(points);
+            const vision::Point2f faceCentre{0.5f * (crop.axis[0].x + crop.axis[2].x),
+                                             0.5f * (crop.axis[0].y + crop.axis[2].y)};
+            const auto atTruth = vision::estimateRollBySymmetry(points, faceCentre, size);
+            const double error = std::fabs(ours.rollDegrees - truthRoll);
+            symmetry.values.push_back(error);
+            dissertation.values.push_back(std::fabs(theirs.rollDegrees - truthRoll));
+            lineFit.values.push_back(std::fabs(line.rollDegrees - truthRoll));
+            upright.values.push_back(std::fabs(truthRoll));
+            truthCentre.values.push_back(std::fabs(atTruth.rollDegrees - truthRoll));
+            // The eye line's roll: the angle of left eye -> right eye from horizontal, rotated.
+            const double eyeRoll =
+                std::atan2(f.rightEye.y - f.leftEye.y, f.rightEye.x - f.leftEye.x) * 180.0 /
+                    3.14159265358979323846 +
+                rotation;
+            eyeLine.values.push_back(std::fabs(ours.rollDegrees - eyeRoll));
+            truthNoise.values.push_back(std::fabs(eyeRoll - truthRoll));
+            if (f.eyeMouthDistance() >= 20.f)
+                large.values.push_back(error);
+            cornerCounts.push_back(n);
+            const double offset =
+                std::hypot(centre.x - faceCentre.x, centre.y - faceCentre.y) / size;
+            centreOffsets.push_back(offset);
+            boxPerEyeMouth.push_back(3.0 * size / side);  // the crop is 3 eye-mouth distances
+            if (o.perFace)
+                std::fprintf(out, "%-28s %4d %5.1f %7.2f %7.2f %7.2f %7.2f %5d %6.3f\n",
+                             f.image.c_str(), f.line, static_cast<double>(f.eyeMouthDistance()),
+                             rotation, truthRoll, static_cast<double>(ours.rollDegrees),
+                             static_cast<double>(line.rollDegrees), n, offset);
+        }
+
+        const auto meanOf = [](const std::vector<double>& v) {
+            double s = 0;
+            for (double x : v)
+                s += x;
+            return v.empty() ? 0.0 : s / static_cast<double>(v.size());
+        };
+        std::fprintf(out,
+                     "faces: %zu, detected %zu, missed %d (%d crops smaller than the window)\n",
+                     truth.size(), symmetry.values.size(), missed, tooSmall);
+        std::fprintf(out,
+                     "detected boxes: %.1f corners on average, box centre %.3f of the box side "
+                     "from the face centre, box side %.2f x eye-mouth distance\n",
+                     meanOf(cornerCounts), meanOf(centreOffsets), meanOf(boxPerEyeMouth));
+        std::fprintf(out, "%-36s %6s %9s %8s %8s %8s\n", "method", "faces", "mean_deg", "p90_deg",
+                     "within1", "within5");
+        for (const Errors* e : {&symmetry, &dissertation, &lineFit, &upright, &truthCentre,
+                                &eyeLine, &truthNoise, &large})
+            std::fprintf(out, "%-36s %6zu %9.2f %8.2f %8.3f %8.3f\n", e->name, e->values.size(),
+                         e->mean(), e->percentile(0.9), e->within(1.0), e->within(5.0));
+        std::fprintf(out, "roll: faces=%zu mean_err_deg=%.2f within1=%.3f within5=%.3f\n",
+                     symmetry.values.size(), symmetry.mean(), symmetry.within(1.0),
+                     symmetry.within(5.0));
+        return 0;
+    } catch (const std::exception& e) {
+        std::fprintf(err, "mirror-eval roll: %s\n", e.what());
+        return 1;
+    }
+}
+
+}  // namespace mirror_eval

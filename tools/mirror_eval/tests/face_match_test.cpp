@@ -1,0 +1,107 @@
+// The matching rules of mirror-eval detect and track: the detect rule (eyes and mouth centre
+// inside, side within a factor 2 of the face's scale), one-to-one pairings, IoU, and the
+// detector-convention truth box.
+
+#include "face_match.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+namespace {
+
+using namespace mirror_eval;
+
+/// An upright face with eye-mouth distance 20 centred at (100, 100).
+LandmarkFace face(float cx = 100.f, float cy = 100.f)
+{
+    LandmarkFace f;
+    f.leftEye = {cx - 10, cy - 10};
+    f.rightEye = {cx + 10, cy - 10};
+    f.nose = {cx, cy};
+    f.mouthLeft = {cx - 6, cy + 10};
+    f.mouthCentre = {cx, cy + 10};
+    f.mouthRight = {cx + 6, cy + 10};
+    return f;
+}
+
+TEST(FaceMatch, IouOfBoxes)
+{
+    EXPECT_FLOAT_EQ(iou({0, 0, 10, 10}, {0, 0, 10, 10}), 1.f);
+    EXPECT_FLOAT_EQ(iou({0, 0, 10, 10}, {5, 0, 10, 10}), 50.f / 150.f);
+    EXPECT_FLOAT_EQ(iou({0, 0, 10, 10}, {10, 0, 10, 10}), 0.f);
+    EXPECT_FLOAT_EQ(iou({0, 0, 10, 10}, {2, 2, 5, 5}), 25.f / 100.f);
+}
+
+TEST(FaceMatch, DetectRuleNeedsEyesMouthAndScale)
+{
+    const LandmarkFace f = face();  // scale 2.2 x 20 = 44: sides 22..88 pass
+    EXPECT_TRUE(detectionMatchesFace({78, 78, 44, 44}, f));
+    EXPECT_TRUE(detectionMatchesFace({88, 88, 24, 24}, f));     // tight, eyes on the edge
+    EXPECT_FALSE(detectionMatchesFace({89, 89, 20, 20}, f));    // misses the eyes
+    EXPECT_FALSE(detectionMatchesFace({50, 50, 100, 100}, f));  // 100 > 88: too big
+    EXPECT_TRUE(detectionMatchesFace({56, 56, 88, 88}, f));     // exactly twice
+    EXPECT_FALSE(detectionMatchesFace({95, 80, 44, 44}, f));    // left eye outside
+    EXPECT_FALSE(detectionMatchesFace({78, 60, 44, 44}, f));    // mouth centre outside
+    EXPECT_NE(detectRuleText().find("x2 of 2.2 x eye-mouth"), std::string::npos);
+}
+
+TEST(FaceMatch, DetectionsPairOneToOneClosestFirst)
+{
+    const LandmarkFace a = face(100, 100), b = face(300, 100);
+    const LandmarkFace* faces[] = {&a, &b};
+    // Two boxes on face a (the second closer), one on b, one on nothing.
+    const vision::Rect boxes[] = {
+        {80, 80, 44, 44}, {78, 78, 44, 44}, {278, 78, 44, 44}, {500, 500, 44, 44}};
+    const Pairing p = pairDetections(boxes, faces);
+    EXPECT_EQ(p.matches, 2);
+    EXPECT_EQ(p.truthOfCandidate[0], -1);  // the duplicate is a false positive
+    EXPECT_EQ(p.truthOfCandidate[1], 0);
+    EXPECT_EQ(p.truthOfCandidate[2], 1);
+    EXPECT_EQ(p.truthOfCandidate[3], -1);
+    EXPECT_EQ(p.candidateOfTruth[0], 1);
+    EXPECT_EQ(p.candidateOfTruth[1], 2);
+}
+
+TEST(FaceMatch, IouPairingHighestFirstAndThreshold)
+{
+    const BoxF truths[] = {{0, 0, 100, 100}, {200, 0, 100, 100}};
+    const BoxF shown[] = {{10, 0, 100, 100}, {0, 0, 100, 100}, {260, 0, 100, 100}};
+    const Pairing p = pairByIou(shown, truths, 0.5f);
+    EXPECT_EQ(p.truthOfCandidate[1], 0);   // IoU 1 wins over 0.82
+    EXPECT_EQ(p.truthOfCandidate[0], -1);  // truth 0 already taken
+    EXPECT_EQ(p.truthOfCandidate[2], -1);  // IoU 0.25 < 0.5
+    EXPECT_EQ(p.candidateOfTruth[1], -1);
+    EXPECT_EQ(p.matches, 1);
+}
+
+TEST(FaceMatch, DetectorConventionBox)
+{
+    // Upright: side 2.5 x 20 = 50, centre raised 0.09 x 50 = 4.5 from (100, 100).
+    const BoxF b = detectorConventionBox({100, 90}, {100, 110});
+    EXPECT_FLOAT_EQ(b.width, 50.f);
+    EXPECT_FLOAT_EQ(b.height, 50.f);
+    EXPECT_NEAR(b.x + 25.f, 100.f, 1e-4);
+    EXPECT_NEAR(b.y + 25.f, 95.5f, 1e-4);
+    // Rolled 90 degrees (eyes on the right, mouth on the left): raised towards the eyes, +x.
+    const BoxF r = detectorConventionBox({110, 100}, {90, 100});
+    EXPECT_NEAR(r.x + 25.f, 104.5f, 1e-4);
+    EXPECT_NEAR(r.y + 25.f, 100.f, 1e-4);
+}
+
+TEST(FaceMatch, BoundingBoxAndSquare)
+{
+    const vision::Point2f p[] = {{1, 5}, {3, 2}, {-1, 4}};
+    const BoxF b = boundingBox(p);
+    EXPECT_FLOAT_EQ(b.x, -1.f);
+    EXPECT_FLOAT_EQ(b.y, 2.f);
+    EXPECT_FLOAT_EQ(b.width, 4.f);
+    EXPECT_FLOAT_EQ(b.height, 3.f);
+    const BoxF s = squareAbout({10, 20}, 8);
+    EXPECT_FLOAT_EQ(s.x, 6.f);
+    EXPECT_FLOAT_EQ(s.y, 16.f);
+    EXPECT_TRUE(contains(s, {14, 24}));
+    EXPECT_FALSE(contains(s, {14.1f, 24}));
+}
+
+}  // namespace

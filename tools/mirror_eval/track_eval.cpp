@@ -1,0 +1,423 @@
+#include "track_eval.hpp"
+
+#include "detect_eval.hpp"
+#include "face_match.hpp"
+#include "face_truth.hpp"
+#include "vision/face_stage.hpp"
+#include "vision/haar_cascade.hpp"
+#include "vision/motion_stage.hpp"
+#include "vision/pipeline.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <exception>
+#include <filesystem>
+#include <map>
+#include <memory>
+#include <opencv2/core.hpp>
+#include <opencv2/imgcodecs.hpp>
+#include <stdexcept>
+
+namespace mirror_eval {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+double meanOf(const std::vector<double>& v)
+{
+    double s = 0;
+    for (double x : v)
+        s += x;
+    return v.empty() ? 0.0 : s / static_cast<double>(v.size());
+}
+
+/// One truth face of a frame in the common form of both layouts.
+struct TruthFace {
+    int id = 0;
+    BoxF box{};
+    BoxF landmarkBox{};  ///< FGNet: the landmarks' bounding box (reported, not matched)
+    vision::Point2f centre{};
+    double rollDegrees = 0.0;
+    double eyeRollDegrees = 0.0;  ///< FGNet: the eye line's roll (diagnostic)
+    bool moving = true;
+    bool wholeInFrame = true;
+};
+
+struct Sequence {
+    bool composed = false;
+    std::vector<std::string> frames;            ///< paths, in order
+    std::vector<std::vector<TruthFace>> truth;  ///< per frame
+};
+
+Sequence loadSequence(const TrackEvalOptions& o)
+{
+    if (!fs::is_directory(o.frames))
+        throw std::runtime_error("frames " + o.frames + ": not a folder");
+    if (!fs::is_directory(o.truth))
+        throw std::runtime_error("truth " + o.truth + ": not a folder");
+    Sequence s;
+    std::vector<fs::path> frames;
+    for (const auto& e : fs::directory_iterator(o.frames)) {
+        std::string ext = e.path().extension().string();
+        std::transform(ext.begin(), ext.end(), ext.begin(),
+                       [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+        if (e.is_regular_file() && (ext == ".png" || ext == ".jpg" || ext == ".jpeg"))
+            frames.push_back(e.path());
+    }
+    std::sort(frames.begin(), frames.end());
+    if (frames.empty())
+        throw std::runtime_error("frames " + o.frames + ": no PNG/JPEG frames");
+    if (o.maxFrames > 0 && static_cast<int>(frames.size()) > o.maxFrames)
+        frames.resize(static_cast<std::size_t>(o.maxFrames));
+
+    const fs::path first = frames.front().stem();
+    const bool pts = fs::exists(fs::path(o.truth) / (first.string() + ".pts"));
+    const bool txt = fs::exists(fs::path(o.truth) / (first.string() + ".txt"));
+    if (!pts && !txt)
+        throw std::runtime_error("truth " + o.truth + ": no " + first.string() + ".pts or " +
+                                 first.string() + ".txt for frame " +
+                                 frames.front().filename().string());
+    s.composed = txt && !pts;
+    for (const fs::path& f : frames) {
+        const fs::path t = fs::path(o.truth) / (f.stem().string() + (s.composed ? ".txt" : ".pts"));
+        if (!fs::exists(t))
+            throw std::runtime_error("truth " + t.string() + ": missing for frame " +
+                                     f.filename().string());
+        std::vector<TruthFace> faces;
+        if (s.composed) {
+            for (const ComposedFace& c : loadComposedTruth(t.string())) {
+                TruthFace tf;
+                tf.id = c.id;
+                tf.box = squareAbout(c.centre, c.size);
+                tf.centre = c.centre;
+                tf.rollDegrees = c.rollDegrees;
+                tf.moving = c.moving;
+                faces.push_back(tf);
+            }
+        } else {
+            const std::vector<vision::Point2f> points = loadPts(t.string());
+            if (points.size() != 68)
+                throw std::runtime_error(t.string() + ": expected 68 points, got " +
+                                         std::to_string(points.size()));
+            const auto axis = axisPoints68(points);
+            TruthFace tf;
+            tf.landmarkBox = boundingBox(points);
+            tf.box = detectorConventionBox(axis[0], axis[2]);
+            tf.centre = {tf.box.x + 0.5f * tf.box.width, tf.box.y + 0.5f * tf.box.height};
+            tf.rollDegrees = axisRollDegrees(axis[0], axis[1], axis[2]);
+            tf.eyeRollDegrees =
+                std::atan2(points[36].y - points[31].y, points[36].x - points[31].x) * 180.0 /
+                3.14159265358979323846;
+            faces.push_back(tf);
+        }
+        s.frames.push_back(f.string());
+        s.truth.push_back(std::move(faces));
+    }
+    return s;
+}
+
+struct Config {
+    const char* name;
+    vision::FaceTrackingMode mode;
+    bool motionMask;
+};
+
+constexpr Config kConfigs[] = {
+    {"detector", vision::FaceTrackingMode::None, false},
+    {"motion", vision::FaceTrackingMode::None, true},
+    {"translation", vision::FaceTrackingMode::Translation, true},
+    {"similarity", vision::FaceTrackingMode::Similarity, true},
+};
+
+const char* describe(const Config& c)
+{
+    switch (c.mode) {
+        case vision::FaceTrackingMode::None:
+            return c.motionMask ? "+ motion mask (masked scan), no tracking"
+                                : "detector only: full scan every frame, no tracking";
+        case vision::FaceTrackingMode::Translation:
+            return "+ translation tracking (LK corners), motion mask";
+        default:
+            return "+ similarity tracking, roll-warped verification, motion mask";
+    }
+}
+
+/// Fraction of 255 pixels of a mask (frame / downscale) inside a frame-coordinate box.
+double maskFraction(const vision::ConstImageView& mask, const BoxF& box, int downscale)
+{
+    const float k = static_cast<float>(downscale);
+    const int x0 = std::max(0, static_cast<int>(box.x / k));
+    const int y0 = std::max(0, static_cast<int>(box.y / k));
+    const int x1 = std::min(mask.width, static_cast<int>((box.x + box.width) / k));
+    const int y1 = std::min(mask.height, static_cast<int>((box.y + box.height) / k));
+    long on = 0, all = 0;
+    for (int y = y0; y < y1; ++y) {
+        for (int x = x0; x < x1; ++x) {
+            on += mask.row(y)[x] != 0;
+            ++all;
+        }
+    }
+    return all > 0 ? static_cast<double>(on) / static_cast<double>(all) : 0.0;
+}
+
+struct Previous {
+    int truthId = -1;
+    long frame = -1;
+    double dx = 0.0, dy = 0.0;
+};
+
+TrackScore runConfig(const Config& config, const Sequence& seq, const vision::HaarCascade& cascade,
+                     const TrackEvalOptions& o, std::FILE* out)
+{
+    // Frames are decoded one at a time (a long sequence does not fit in memory decoded).
+    cv::Mat image = cv::imread(seq.frames.front(), cv::IMREAD_COLOR);
+    if (image.empty())
+        throw std::runtime_error("frame " + seq.frames.front() + ": cannot decode");
+    const vision::Size frameSize{image.cols, image.rows};
+
+    vision::MotionStageOptions mopt;
+    mopt.downscale = o.downscale;
+    vision::MotionStage motion(frameSize, mopt);
+    vision::FaceTrackerOptions topt;
+    topt.mode = config.mode;
+    topt.useMotionMask = config.motionMask;
+    topt.detector.minSize = {o.minSize, o.minSize};
+    vision::FaceStage faceStage(motion, cascade, topt);
+
+    TrackScore score;
+    score.config = config.name;
+    std::map<int, Previous> previous;  // by track id
+    vision::FrameState state;
+    for (std::size_t k = 0; k < seq.frames.size(); ++k) {
+        if (k > 0) {
+            image = cv::imread(seq.frames[k], cv::IMREAD_COLOR);
+            if (image.empty())
+                throw std::runtime_error("frame " + seq.frames[k] + ": cannot decode");
+            if (image.cols != frameSize.width || image.rows != frameSize.height)
+                throw std::runtime_error("frame " + seq.frames[k] + ": size differs from frame 0");
+        }
+        vision::Frame frame;
+        frame.image = {image.data, image.cols, image.rows, static_cast<int>(image.step),
+                       vision::PixelFormat::BGR24};
+        frame.sequence = k;
+        frame.timestampNs = static_cast<std::int64_t>(k) * 40'000'000;
+        vision::Pipeline::begin(state, frame);
+        motion.process(state);
+        faceStage.process(state);
+
+        std::vector<const vision::TrackedFace*> shown;
+        std::vector<BoxF> shownBoxes;
+        for (const vision::TrackedFace& f : faceStage.faces()) {
+            if (f.shown()) {
+                shown.push_back(&f);
+                shownBoxes.push_back(squareAbout(f.centre, f.size));
+            }
+        }
+        const std::vector<TruthFace>& truth = seq.truth[k];
+        std::vector<BoxF> truthBoxes;
+        for (const TruthFace& t : truth)
+            truthBoxes.push_back(t.box);
+        const Pairing p = pairByIou(shownBoxes, truthBoxes, o.minIou);
+        if (seq.composed && k >= 30 && motion.ok()) {
+            for (const TruthFace& t : truth)
+                (t.moving ? score.movingMaskFractions : score.staticMaskFractions)
+                    .push_back(maskFraction(motion.mask(), t.box, motion.downscale()));
+        }
+        if (o.perFrame) {
+            std::fprintf(out, "%s %zu:", config.name, k);
+            for (const TruthFace& t : truth)
+                std::fprintf(out, " truth[%d%s %.0f,%.0f %.0fx%.0f roll %.1f]", t.id,
+                             t.moving ? "" : " static", static_cast<double>(t.centre.x),
+                             static_cast<double>(t.centre.y), static_cast<double>(t.box.width),
+                             static_cast<double>(t.box.height), t.rollDegrees);
+            for (const vision::TrackedFace& f : faceStage.faces())
+                std::fprintf(out, " face[%d %s %.0f,%.0f %.0f roll %.1f hits %d misses %d]", f.id,
+                             f.shown() ? "shown" : "tentative", static_cast<double>(f.centre.x),
+                             static_cast<double>(f.centre.y), static_cast<double>(f.size),
+                             static_cast<double>(f.rollDegrees), f.hits, f.misses);
+            for (std::size_t c = 0; c < shown.size(); ++c) {
+                float best = 0.f;
+                for (const BoxF& t : truthBoxes)
+                    best = std::max(best, iou(shownBoxes[c], t));
+                std::fprintf(out, " iou(%d)=%.2f", shown[c]->id, static_cast<double>(best));
+            }
+            std::fputc('\n', out);
+        }
+
+        for (std::size_t c = 0; c < shown.size(); ++c) {
+            const int ti = p.truthOfCandidate[c];
+            if (ti < 0 || !truth[static_cast<std::size_t>(ti)].moving) {
+                ++score.falsePositives;
+                score.falsePositivesOnStatic += ti >= 0;
+                previous.erase(shown[c]->id);
+                continue;
+            }
+            const TruthFace& t = truth[static_cast<std::size_t>(ti)];
+            ++score.truePositives;
+            score.ious.push_back(iou(shownBoxes[c], t.box));
+            if (!seq.composed) {
+                score.landmarkIous.push_back(iou(shownBoxes[c], t.landmarkBox));
+                score.eyeRollErrors.push_back(std::fabs(shown[c]->rollDegrees - t.eyeRollDegrees));
+            }
+            double err = std::fabs(shown[c]->rollDegrees - t.rollDegrees);
+            score.rollErrors.push_back(err);
+            const double dx = shown[c]->centre.x - t.centre.x;
+            const double dy = shown[c]->centre.y - t.centre.y;
+            Previous& prev = previous[shown[c]->id];
+            if (prev.truthId == t.id && prev.frame == static_cast<long>(k) - 1)
+                score.centreSteps.push_back(std::hypot(dx - prev.dx, dy - prev.dy));
+            prev = {t.id, static_cast<long>(k), dx, dy};
+        }
+        for (std::size_t ti = 0; ti < truth.size(); ++ti) {
+            const TruthFace& t = truth[ti];
+            if (!t.moving || p.candidateOfTruth[ti] >= 0)
+                continue;
+            const bool whole = t.box.x >= 0.f && t.box.y >= 0.f &&
+                               t.box.x + t.box.width <= static_cast<float>(frameSize.width) &&
+                               t.box.y + t.box.height <= static_cast<float>(frameSize.height);
+            score.falseNegatives += whole;
+        }
+        ++score.frames;
+    }
+    return score;
+}
+
+std::string orDash(bool show, double v, const char* format)
+{
+    if (!show)
+        return "-";
+    char text[32];
+    std::snprintf(text, sizeof text, format, v);
+    return text;
+}
+
+}  // namespace
+
+double TrackScore::precision() const
+{
+    const long shown = truePositives + falsePositives;
+    return shown > 0 ? static_cast<double>(truePositives) / static_cast<double>(shown) : 1.0;
+}
+
+double TrackScore::recall() const
+{
+    const long faces = truePositives + falseNegatives;
+    return faces > 0 ? static_cast<double>(truePositives) / static_cast<double>(faces) : 1.0;
+}
+
+double TrackScore::rollMeanError() const
+{
+    return meanOf(rollErrors);
+}
+double TrackScore::jitterMean() const
+{
+    return meanOf(centreSteps);
+}
+
+int runTrackEval(const TrackEvalOptions& o, std::FILE* out, std::FILE* err)
+{
+    try {
+        std::vector<Config> configs;
+        for (const Config& c : kConfigs) {
+            if (o.config == "all" || o.config == c.name)
+                configs.push_back(c);
+        }
+        if (configs.empty())
+            throw std::runtime_error("--config '" + o.config +
+                                     "': expected detector, motion, translation, similarity or "
+                                     "all");
+        if (o.downscale < 1 || o.downscale > 4)
+            throw std::runtime_error("--downscale must be in 1..4");
+        if (!(o.minIou > 0.f && o.minIou <= 1.f))
+            throw std::runtime_error("--min-iou must be in (0, 1]");
+        const Sequence seq = loadSequence(o);
+        const std::string cascadePath = o.cascade.empty() ? kDefaultCascade : o.cascade;
+        const vision::HaarCascade cascade = vision::loadHaarCascade(cascadePath);
+
+        long truthFaces = 0, staticFaces = 0;
+        for (const auto& frame : seq.truth) {
+            truthFaces += static_cast<long>(frame.size());
+            for (const auto& t : frame)
+                staticFaces += !t.moving;
+        }
+        std::fprintf(out,
+                     "track eval: %zu frames of %s, truth %s (%s, %ld truth faces, %ld of "
+                     "them static); cascade %s\n",
+                     seq.frames.size(), o.frames.c_str(), o.truth.c_str(),
+                     seq.composed ? "composed multi-face" : "FGNet 68-point", truthFaces,
+                     staticFaces, cascadePath.c_str());
+        std::fprintf(out,
+                     "pipeline: MotionStage (frame / %d) + FaceStage, tracker defaults otherwise; "
+                     "shown faces = TrackedFace::shown()\n",
+                     o.downscale);
+        std::fprintf(out,
+                     "match: IoU(our square box, %s) >= %.2f, one to one, highest first; "
+                     "unmatched shown faces%s are false positives; %s\n",
+                     seq.composed ? "truth square of `size` about (cx, cy)"
+                                  : "the detector-convention square of the landmarks: side 2.5 x "
+                                    "eye-mouth distance, centre raised 0.09 x side from the "
+                                    "eye-mouth midpoint (measured by mirror-eval detect on "
+                                    "CMU/MIT set A; the landmarks' bounding box runs eyebrows to "
+                                    "chin, where a correct square box scores only ~0.5)",
+                     static_cast<double>(o.minIou),
+                     seq.composed ? " and shown faces on static faces" : "",
+                     seq.composed ? "a moving face wholly in the frame and unmatched is a false "
+                                    "negative"
+                                  : "a frame without a match is a false negative");
+        std::fprintf(out,
+                     "roll error: |our roll - truth roll| over true positives (%s); jitter: mean "
+                     "|(our centre - truth centre) change| between consecutive frames of a "
+                     "track on the same face, px\n",
+                     seq.composed ? "truth roll as given"
+                                  : "truth roll: the best line through eye midpoint, nose tip and "
+                                    "mouth centre; 'eye' column: against the eye line's roll");
+        for (const Config& c : configs)
+            std::fprintf(out, "  %-12s %s\n", c.name, describe(c));
+
+        std::vector<TrackScore> scores;
+        for (const Config& c : configs)
+            scores.push_back(runConfig(c, seq, cascade, o, out));
+
+        std::fprintf(out, "%-12s %7s %6s %6s %7s %9s %7s %9s %9s %9s %8s\n", "config", "TP", "FP",
+                     seq.composed ? "FP_st" : "-", "FN", "precision", "recall", "roll_err",
+                     seq.composed ? "-" : "eye_err", "jitter_px", "mean_iou");
+        for (std::size_t i = 0; i < scores.size(); ++i) {
+            const TrackScore& s = scores[i];
+            const bool roll = configs[i].mode == vision::FaceTrackingMode::Similarity;
+            std::fprintf(out, "%-12s %7ld %6ld %6s %7ld %9.4f %7.4f %9s %9s %9.2f %8.3f\n",
+                         s.config.c_str(), s.truePositives, s.falsePositives,
+                         seq.composed ? std::to_string(s.falsePositivesOnStatic).c_str() : "-",
+                         s.falseNegatives, s.precision(), s.recall(),
+                         orDash(roll, s.rollMeanError(), "%.2f").c_str(),
+                         orDash(roll && !seq.composed, meanOf(s.eyeRollErrors), "%.2f").c_str(),
+                         s.jitterMean(), meanOf(s.ious));
+        }
+        if (!seq.composed) {
+            std::fprintf(out,
+                         "IoU of the true positives against the landmarks' bounding box "
+                         "instead (not used for matching):");
+            for (const TrackScore& s : scores) {
+                const auto lo = std::min_element(s.landmarkIous.begin(), s.landmarkIous.end());
+                std::fprintf(out, " %s mean %.3f min %.3f;", s.config.c_str(),
+                             meanOf(s.landmarkIous), lo == s.landmarkIous.end() ? 0.0 : *lo);
+            }
+            std::fputc('\n', out);
+        }
+        if (seq.composed && !scores.front().staticMaskFractions.empty())
+            std::fprintf(out,
+                         "motion mask (from frame 30): foreground fraction inside static faces "
+                         "%.3f, inside moving faces %.3f\n",
+                         meanOf(scores.front().staticMaskFractions),
+                         meanOf(scores.front().movingMaskFractions));
+        const TrackScore& last = scores.back();
+        std::fprintf(out, "track: precision=%.4f recall=%.4f roll_mean_err_deg=%.2f\n",
+                     last.precision(), last.recall(), last.rollMeanError());
+        return 0;
+    } catch (const std::exception& e) {
+        std::fprintf(err, "mirror-eval track: %s\n", e.what());
+        return 1;
+    }
+}
+
+}  // namespace mirror_eval

@@ -1,0 +1,65 @@
+#pragma once
+// mirror-eval track: the firmware's face pipeline (MotionStage + FaceStage, METHOD.md §3-4) over
+// a folder of frames in order, scored against per-frame truth, for the configurations of the
+// dissertation's Table 6: detector only / + motion mask / + translation tracking / + similarity
+// tracking with roll-warped verification. Shown faces are TrackedFace::shown().
+//
+// Truth layouts (--truth DIR, matched to the frames by file stem):
+//  - FGNet talking face: DIR/<stem>.pts, 68 points. One face, always in view. Truth box = the
+//    detector-convention square of the landmarks (face_match.hpp: the landmarks' bounding box
+//    cannot reach IoU 0.5 reliably with a correct square box); truth roll = the line through eye
+//    midpoint, nose tip and mouth centre (face_truth.hpp); truth centre = the truth box's centre.
+//  - composed (tools/facegen): DIR/<stem>.txt, "id cx cy size roll_deg moving" per face; truth
+//    box = the square of `size` about (cx, cy). A shown face on a static face (moving 0) is a
+//    false positive; a moving face wholly in the frame that no shown face matches is a false
+//    negative (partly visible ones may be matched but are never missed).
+// Matching: shown faces and truth boxes paired one to one by IoU >= minIou, highest first
+// (face_match.hpp). Unmatched shown faces are false positives.
+
+#include <cstdio>
+#include <string>
+#include <vector>
+
+namespace mirror_eval {
+
+struct TrackEvalOptions {
+    std::string frames;          ///< folder of frames (png/jpg), in file-name order
+    std::string truth;           ///< folder of .pts (FGNet) or .txt (composed) files
+    std::string cascade;         ///< empty: detect_eval.hpp's default
+    std::string config = "all";  ///< detector | motion | translation | similarity | all
+    int downscale = 2;           ///< the motion stage's working resolution (frame / downscale)
+    int minSize = 0;             ///< detector min face side in working pixels (0: the window's)
+    float minIou = 0.5f;
+    int maxFrames = 0;      ///< 0: all frames; else the first N (tests)
+    bool perFrame = false;  ///< print every frame's shown faces and truth
+};
+
+/// Table 6 counts for one configuration.
+struct TrackScore {
+    std::string config;
+    long frames = 0;
+    long truePositives = 0;
+    long falsePositives = 0;
+    long falsePositivesOnStatic = 0;  ///< of falsePositives: shown on a static face
+    long falseNegatives = 0;
+    std::vector<double> rollErrors;     ///< |roll - truth roll| per true positive
+    std::vector<double> centreSteps;    ///< |(c - g)_t - (c - g)_{t-1}| per continued match, px
+    std::vector<double> ious;           ///< IoU of every true positive
+    std::vector<double> landmarkIous;   ///< FGNet: IoU of every true positive with the landmark box
+    std::vector<double> eyeRollErrors;  ///< FGNet: |roll - eye line's roll| per true positive
+    /// Composed: motion-mask foreground fraction inside static / moving truth boxes (from frame
+    /// 30, once the background model has settled).
+    std::vector<double> staticMaskFractions;
+    std::vector<double> movingMaskFractions;
+    double precision() const;
+    double recall() const;
+    double rollMeanError() const;
+    double jitterMean() const;
+};
+
+/// Runs, prints the table and the final line `track: precision=.. recall=..
+/// roll_mean_err_deg=..` (the last configuration run) to `out`. Returns the exit code; errors go
+/// to `err` as one line.
+int runTrackEval(const TrackEvalOptions& options, std::FILE* out, std::FILE* err);
+
+}  // namespace mirror_eval
