@@ -1,14 +1,19 @@
-// mirror-bench: ours side by side with the peers, on one core, 720x480. Without --ratios it is a
-// normal Google Benchmark binary (every --benchmark_* flag works); with --ratios it times the
-// target pairs of issue 3 itself and prints one `ratio <name> <value>` line per target.
+// mirror-bench: ours side by side with the peers, on one core. Without --ratios it is a normal
+// Google Benchmark binary (every --benchmark_* flag works); with --ratios it times the target
+// pairs of issues 3 and 4 and the overlays' cost (issue 5) itself and prints one
+// `ratio <name> <value>` line per target.
 //
 // Own flags (removed before Google Benchmark sees the command line):
 //   --ratios        print raw times and the target ratios, then exit
+//   --ratios=chroma only issue 3's (chromaticity, card tracker); --ratios=faces only issue 4's;
+//   --ratios=render only issue 5's (3D overlays of 3 faces, headless GL)
 //   --image=PATH    the photograph the frames are made from (default: ../shared/data astronaut)
+//   --overlays=PATH the overlay catalogue --ratios times (default: assets/overlays/catalogue.toml)
 
 #include "bench_setup.hpp"
 #include "card_tracker_case.hpp"
 #include "chromaticity_cases.hpp"
+#include "face_cases.hpp"
 #include "ratios.hpp"
 
 #include <benchmark/benchmark.h>
@@ -80,20 +85,108 @@ void registerCardTracker(const cv::Mat& photo)
     })->Unit(benchmark::kMillisecond);
 }
 
+// Made on first use: a filter that skips the face benchmarks does not decode their frames (and a
+// board without the shared data can still run the others).
+bench::FaceCases& faceCases()
+{
+    static std::unique_ptr<bench::FaceCases> cases;
+    if (!cases)
+        cases = std::make_unique<bench::FaceCases>();
+    return *cases;
+}
+
+void registerFaces()
+{
+    auto add = [](const std::string& name, std::function<void(bench::FaceCases&)> run) {
+        benchmark::RegisterBenchmark(name.c_str(), [run](benchmark::State& state) {
+            bench::FaceCases* cases = nullptr;
+            try {
+                cases = &faceCases();
+            } catch (const std::exception& e) {
+                state.SkipWithError(e.what());
+                return;
+            }
+            for (auto _ : state) {
+                run(*cases);
+                benchmark::ClobberMemory();
+            }
+        })->Unit(benchmark::kMillisecond);
+    };
+    // Cascade names are known without loading anything: the order of FaceCases.
+    const char* const cascades[] = {"default", "alt2"};
+    for (int i = 0; i < 2; ++i) {
+        add(std::string("faces/vj_ours_360x240/") + cascades[i],
+            [i](bench::FaceCases& c) { c.detectOurs(i); });
+        add(std::string("faces/vj_opencv_360x240/") + cascades[i],
+            [i](bench::FaceCases& c) { c.detectOpenCv(i); });
+    }
+    add("motion/mog_ours_360x240_k3", [](bench::FaceCases& c) { c.motionOurs(); });
+    add("motion/mog2_opencv_360x240_k3", [](bench::FaceCases& c) { c.motionOpenCv(); });
+    for (int r = 0; r < bench::FaceCases::kFlowResolutions; ++r) {
+        const std::string res = bench::FaceCases::flowResolutionName(r);
+        add("flow/lk_ours_50pts_3levels/" + res, [r](bench::FaceCases& c) { c.flowOurs(r); });
+        add("flow/lk_opencv_50pts_3levels/" + res, [r](bench::FaceCases& c) { c.flowOpenCv(r); });
+    }
+    benchmark::RegisterBenchmark("faces/pipeline_fgnet_720x576", [](benchmark::State& state) {
+        bench::FaceCases* cases = nullptr;
+        try {
+            cases = &faceCases();
+        } catch (const std::exception& e) {
+            state.SkipWithError(e.what());
+            return;
+        }
+        // Frames in order, decoding untimed; the sequence restarts (fresh stages) at its end.
+        cases->pipelineRestart();
+        int next = 0, shown = 0, frames = 0;
+        for (auto _ : state) {
+            state.PauseTiming();
+            if (next == cases->pipelineFrames()) {
+                cases->pipelineRestart();
+                next = 0;
+            }
+            cases->pipelineLoad(next++);
+            state.ResumeTiming();
+            cases->pipelineStep();
+            ++frames;
+            shown += cases->pipelineShownFaces() > 0;
+        }
+        state.counters["face_shown_share"] = frames ? static_cast<double>(shown) / frames : 0.0;
+    })->Unit(benchmark::kMillisecond);
+}
+
 }  // namespace
 
 int main(int argc, char** argv)
 {
     bool ratios = false;
+    bool chromaRatios = true;
+    bool faceRatios = true;
+    bool renderRatios = true;
     std::string image;
+    std::string overlays = std::string(MIRROR_SOURCE_DIR) + "/assets/overlays/catalogue.toml";
     std::vector<char*> args{argv[0]};
     for (int i = 1; i < argc; ++i) {
-        if (std::strcmp(argv[i], "--ratios") == 0)
+        if (std::strcmp(argv[i], "--ratios") == 0) {
             ratios = true;
-        else if (std::strncmp(argv[i], "--image=", 8) == 0)
+        } else if (std::strcmp(argv[i], "--ratios=faces") == 0) {
+            ratios = true;
+            chromaRatios = false;
+            renderRatios = false;
+        } else if (std::strcmp(argv[i], "--ratios=chroma") == 0) {
+            ratios = true;
+            faceRatios = false;
+            renderRatios = false;
+        } else if (std::strcmp(argv[i], "--ratios=render") == 0) {
+            ratios = true;
+            chromaRatios = false;
+            faceRatios = false;
+        } else if (std::strncmp(argv[i], "--image=", 8) == 0) {
             image = argv[i] + 8;
-        else
+        } else if (std::strncmp(argv[i], "--overlays=", 11) == 0) {
+            overlays = argv[i] + 11;
+        } else {
             args.push_back(argv[i]);
+        }
     }
 
     try {
@@ -127,13 +220,23 @@ int main(int argc, char** argv)
         std::fflush(stdout);
 
         if (ratios) {
-            bench::CardTrackerCase card(frame, kCardFrames);
-            bench::printRatios(chroma, card);
+            if (chromaRatios) {
+                bench::CardTrackerCase card(frame, kCardFrames);
+                bench::printRatios(chroma, card);
+                std::fflush(stdout);
+            }
+            if (faceRatios) {
+                bench::printFaceRatios(faceCases());
+                std::fflush(stdout);
+            }
+            if (renderRatios)
+                bench::printRenderRatios(overlays);
             return 0;
         }
 
         registerChromaticity(chroma);
         registerCardTracker(frame);
+        registerFaces();
         int benchArgc = static_cast<int>(args.size());
         benchmark::AddCustomContext("pinned_cpu", std::to_string(cpu));
         benchmark::AddCustomContext("frame", photo + " -> 720x480 BGR24");

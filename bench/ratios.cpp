@@ -2,12 +2,15 @@
 
 #include "card_tracker_case.hpp"
 #include "chromaticity_cases.hpp"
+#include "face_cases.hpp"
+#include "overlay_render_case.hpp"
 
 #include <time.h>
 
 #include <algorithm>
 #include <cstdio>
 #include <functional>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -43,6 +46,32 @@ enum : std::size_t { kMemcpy, kTable1, kFloatDivide, kFloatReciprocal, kSeedLut,
 
 constexpr double kBatchMs = 5.0;
 constexpr int kRounds = 61;
+constexpr int kFaceRounds = 21;    // the face contenders take 1-50 ms a call
+constexpr int kRenderFrames = 61;  // of each kind; ~10-20 ms a 1280x720 frame on one core
+
+/// Times the contenders: batch sizes (calls per ~kBatchMs) from a short warm-up, then `rounds`
+/// rounds that interleave them, so clock or cache drift hits all of them alike. One per-call
+/// sample per round in perCallMs.
+void timeInterleaved(std::vector<Contender>& contenders, int rounds)
+{
+    for (auto& c : contenders) {
+        const double start = cpuMs();
+        int calls = 0;
+        while (cpuMs() - start < 20.0) {
+            c.run();
+            ++calls;
+        }
+        c.batch = std::max(1, static_cast<int>(calls * kBatchMs / (cpuMs() - start)));
+    }
+    for (int round = 0; round < rounds; ++round) {
+        for (auto& c : contenders) {
+            const double start = cpuMs();
+            for (int i = 0; i < c.batch; ++i)
+                c.run();
+            c.perCallMs.push_back((cpuMs() - start) / c.batch);
+        }
+    }
+}
 
 }  // namespace
 
@@ -70,25 +99,7 @@ void printRatios(ChromaticityCases& chroma, CardTrackerCase& card)
                               [&chroma, path] { chroma.oursOn(path); },
                               1,
                               {}});
-    // Batch sizes from a short warm-up, so each sample is ~5 ms whatever the contender's speed.
-    for (auto& c : contenders) {
-        const double start = cpuMs();
-        int calls = 0;
-        while (cpuMs() - start < 20.0) {
-            c.run();
-            ++calls;
-        }
-        c.batch = std::max(1, static_cast<int>(calls * kBatchMs / (cpuMs() - start)));
-    }
-    // Rounds interleave the contenders, so clock or cache drift hits all of them alike.
-    for (int round = 0; round < kRounds; ++round) {
-        for (auto& c : contenders) {
-            const double start = cpuMs();
-            for (int i = 0; i < c.batch; ++i)
-                c.run();
-            c.perCallMs.push_back((cpuMs() - start) / c.batch);
-        }
-    }
+    timeInterleaved(contenders, kRounds);
     std::vector<double> ms;
     for (const auto& c : contenders) {
         ms.push_back(median(c.perCallMs));
@@ -127,6 +138,100 @@ void printRatios(ChromaticityCases& chroma, CardTrackerCase& card)
     std::printf("ratio chroma_vs_opencv_exact %.2f\n", opencvExact / ours);
     std::printf("ratio chroma_vs_seed_lut %.2f\n", ms[kSeedLut] / ours);
     std::printf("ratio card_tracker_ms %.3f\n", cardMs);
+}
+
+void printFaceRatios(FaceCases& faces)
+{
+    // Pairs: ours then the peer, per cascade, then motion, then flow.
+    std::vector<Contender> contenders;
+    for (int i = 0; i < faces.cascadeCount(); ++i) {
+        contenders.push_back(
+            {"vj_ours_" + faces.cascadeName(i), [&faces, i] { faces.detectOurs(i); }, 1, {}});
+        contenders.push_back(
+            {"vj_opencv_" + faces.cascadeName(i), [&faces, i] { faces.detectOpenCv(i); }, 1, {}});
+    }
+    const std::size_t motionAt = contenders.size();
+    contenders.push_back({"mog_ours_k3", [&faces] { faces.motionOurs(); }, 1, {}});
+    contenders.push_back({"mog_opencv_mog2_k3", [&faces] { faces.motionOpenCv(); }, 1, {}});
+    const std::size_t flowAt = contenders.size();
+    for (int r = 0; r < FaceCases::kFlowResolutions; ++r) {
+        const std::string res = FaceCases::flowResolutionName(r);
+        contenders.push_back(
+            {"lk_ours_50pts_3levels_" + res, [&faces, r] { faces.flowOurs(r); }, 1, {}});
+        contenders.push_back(
+            {"lk_opencv_50pts_3levels_" + res, [&faces, r] { faces.flowOpenCv(r); }, 1, {}});
+    }
+    timeInterleaved(contenders, kFaceRounds);
+    std::vector<double> ms;
+    for (const auto& c : contenders) {
+        ms.push_back(median(c.perCallMs));
+        std::printf("time %-50s %8.4f ms  (median of %d rounds x %d calls)\n", c.name.c_str(),
+                    ms.back(), kFaceRounds, c.batch);
+    }
+    for (int i = 0; i < faces.cascadeCount(); ++i) {
+        std::printf("faces %s at 360x240: ours %d, opencv %d\n", faces.cascadeName(i).c_str(),
+                    faces.detectOurs(i), faces.detectOpenCv(i));
+    }
+    for (int r = 0; r < FaceCases::kFlowResolutions; ++r) {
+        std::printf("flow points tracked at %s: ours %d, opencv %d of %d\n",
+                    FaceCases::flowResolutionName(r), faces.flowOurs(r), faces.flowOpenCv(r),
+                    FaceCases::kFlowPoints);
+    }
+
+    // The pipeline: every FGNet frame once, in order, decoding untimed.
+    std::vector<double> frameMs;
+    faces.pipelineRestart();
+    int shownFrames = 0;
+    for (int i = 0; i < faces.pipelineFrames(); ++i) {
+        faces.pipelineLoad(i);
+        const double t0 = cpuMs();
+        faces.pipelineStep();
+        frameMs.push_back(cpuMs() - t0);
+        shownFrames += faces.pipelineShownFaces() > 0;
+    }
+    double mean = 0.0;
+    for (const double t : frameMs)
+        mean += t / static_cast<double>(frameMs.size());
+    std::vector<double> sorted = frameMs;
+    std::sort(sorted.begin(), sorted.end());
+    // p99: the smallest time at least 99% of the frames do not exceed.
+    const std::size_t n = sorted.size();
+    const double p99 = n == 0 ? 0.0 : sorted[std::min(n - 1, (n * 99 + 99) / 100 - 1)];
+    std::printf(
+        "time face_pipeline_frame %.3f ms mean, %.3f ms median, %.3f ms p99, %.3f ms max"
+        "  (%zu FGNet 720x576 frames of %s, motion /2 + faces; a face shown in %d)\n",
+        mean, n ? sorted[n / 2] : 0.0, p99, n ? sorted.back() : 0.0, n, faces.imageDir().c_str(),
+        shownFrames);
+
+    std::printf("ratio vj_vs_opencv %.2f\n", ms[1] / ms[0]);
+    for (int i = 1; i < faces.cascadeCount(); ++i) {
+        const auto k = static_cast<std::size_t>(2 * i);
+        std::printf("info vj_vs_opencv_%s %.2f\n", faces.cascadeName(i).c_str(), ms[k + 1] / ms[k]);
+    }
+    std::printf("ratio mog_vs_mog2 %.2f\n", ms[motionAt + 1] / ms[motionAt]);
+    std::printf("ratio lk_vs_opencv %.2f\n", ms[flowAt + 1] / ms[flowAt]);
+    for (int r = 1; r < FaceCases::kFlowResolutions; ++r) {
+        const auto k = flowAt + static_cast<std::size_t>(2 * r);
+        std::printf("info lk_vs_opencv_%s %.2f\n", FaceCases::flowResolutionName(r),
+                    ms[k + 1] / ms[k]);
+    }
+    std::printf("ratio face_pipeline_mean_ms %.3f\n", mean);
+    std::printf("ratio face_pipeline_p99_ms %.3f\n", p99);
+}
+
+void printRenderRatios(const std::string& catalogueToml)
+{
+    OverlayRenderCase render(catalogueToml);
+    if (!render.frame(true))
+        throw std::runtime_error(std::string("mirror-bench: overlay frame failed: ") +
+                                 render.lastError());
+    const OverlayRenderCase::Timing t = render.measure(kRenderFrames);
+    std::printf(
+        "time render_frame_1280x720 %.3f ms with 3 faces' overlays, %.3f ms without"
+        "  (median thread CPU of %d frames each, llvmpipe LP_NUM_THREADS=0; overlays %s,"
+        " %d triangles)\n",
+        t.withMs, t.withoutMs, kRenderFrames, render.overlayNames().c_str(), t.triangles);
+    std::printf("ratio render_3faces_ms %.3f\n", t.addedMs());
 }
 
 }  // namespace bench
