@@ -49,7 +49,9 @@ int main(int argc, char** argv)
 
     mirror_eval::RollEvalOptions roll;
     CLI::App* rollCmd = app.add_subcommand(
-        "roll", "initial roll by point symmetry on rotated crops of the CMU/MIT faces");
+        "roll",
+        "initial roll by image symmetry (and by corner symmetry, the dissertation's) on "
+        "rotated crops of the CMU/MIT faces");
     rollCmd->add_option("--images", roll.images, "folder of the images")->required();
     rollCmd->add_option("--truth", roll.truth, "landmarks file, one face per line")->required();
     rollCmd->add_option("--rotate", roll.rotateDegrees, "crops rotate uniformly in +-this")
@@ -70,6 +72,38 @@ int main(int argc, char** argv)
     rollCmd
         ->add_option("--corner-blur", roll.cornerBlurFraction,
                      "Gaussian sigma before corner detection, as a fraction of the box side")
+        ->capture_default_str();
+    rollCmd->add_option("--image-patch", roll.imagePatch, "image symmetry: patch side (px)")
+        ->capture_default_str();
+    rollCmd->add_option("--image-box-scale", roll.imageBoxScale, "image symmetry: square / box")
+        ->capture_default_str();
+    rollCmd
+        ->add_option("--image-axis-offset", roll.imageAxisOffset,
+                     "image symmetry: largest axis offset / patch side")
+        ->capture_default_str();
+    rollCmd
+        ->add_option("--image-half-width", roll.imageHalfWidth,
+                     "image symmetry: compared half-width / patch side")
+        ->capture_default_str();
+    rollCmd->add_option("--image-top", roll.imageTop, "image symmetry: region top / patch side")
+        ->capture_default_str();
+    rollCmd
+        ->add_option("--image-bottom", roll.imageBottom,
+                     "image symmetry: region bottom / patch side")
+        ->capture_default_str();
+    rollCmd->add_option("--image-blur", roll.imageBlur, "image symmetry: [1 2 1] passes")
+        ->capture_default_str();
+    rollCmd->add_option("--image-step", roll.imageStep, "image symmetry: coarse angle step (deg)")
+        ->capture_default_str();
+    rollCmd->add_flag("--image-intensity", roll.imageIntensity,
+                      "image symmetry: compare intensities instead of gradients");
+    rollCmd
+        ->add_option("--image-saturation", roll.imageSaturation,
+                     "image symmetry: gradient saturation (grey levels; 0: linear)")
+        ->capture_default_str();
+    rollCmd
+        ->add_option("--image-axis-sigma", roll.imageAxisSigma,
+                     "image symmetry: pair weight sigma / patch side (0: uniform)")
         ->capture_default_str();
     rollCmd->add_option("--max-faces", roll.maxFaces, "only the first N faces (0: all)");
     rollCmd->add_flag("--per-face", roll.perFace, "one line per face");

@@ -6,6 +6,7 @@
 #include "vision/corner_detector.hpp"
 #include "vision/face_detector.hpp"
 #include "vision/haar_cascade.hpp"
+#include "vision/roll_by_image_symmetry.hpp"
 #include "vision/roll_estimator.hpp"
 
 #include <algorithm>
@@ -141,14 +142,33 @@ int runRollEval(const RollEvalOptions& o, std::FILE* out, std::FILE* err)
         plain.capFraction = 0.f;
         plain.maxAxisOffsetFraction = 0.f;
 
-        Errors symmetry{"symmetry (ours)", {}};
-        Errors dissertation{"symmetry, dissertation's scoring", {}};
+        // The primary method: dense image symmetry, defaults as chosen on the IMM faces.
+        vision::RollByImageSymmetryOptions imageOptions;
+        imageOptions.patchSize = o.imagePatch;
+        imageOptions.boxScale = o.imageBoxScale;
+        imageOptions.maxAxisOffsetFraction = o.imageAxisOffset;
+        imageOptions.regionHalfWidthFraction = o.imageHalfWidth;
+        imageOptions.regionTop = o.imageTop;
+        imageOptions.regionBottom = o.imageBottom;
+        imageOptions.blurPasses = o.imageBlur;
+        imageOptions.coarseStepDegrees = o.imageStep;
+        imageOptions.feature = o.imageIntensity ? vision::SymmetryFeature::Intensity
+                                                : vision::SymmetryFeature::Gradient;
+        imageOptions.gradientSaturation = o.imageSaturation;
+        imageOptions.axisWeightSigma = o.imageAxisSigma;
+        vision::RollByImageSymmetry imageSymmetry(imageOptions);
+        const vision::RollByImageSymmetryOptions& io = imageSymmetry.options();
+
+        Errors image{"image symmetry (primary)", {}};
+        Errors symmetry{"corner symmetry (issue-4 tuned)", {}};
+        Errors dissertation{"corner symmetry, dissertation's", {}};
         Errors lineFit{"line-fit baseline", {}};
         Errors upright{"assume upright (0)", {}};
-        Errors truthCentre{"diag: symmetry about truth centre", {}};
-        Errors eyeLine{"diag: symmetry vs eye-line truth", {}};
+        Errors truthCentre{"diag: corners about truth centre", {}};
+        Errors eyeLine{"diag: image symmetry vs eye-line", {}};
         Errors truthNoise{"diag: eye-line truth vs axis truth", {}};
-        Errors large{"diag: symmetry, eye-mouth >= 20 px", {}};
+        Errors large{"diag: image symmetry, e-m >= 20 px", {}};
+        Errors confident{"diag: image symmetry, conf >= 0.3", {}};
         std::vector<double> cornerCounts, centreOffsets, boxPerEyeMouth;
         int missed = 0, tooSmall = 0;
 
@@ -176,9 +196,24 @@ int runRollEval(const RollEvalOptions& o, std::FILE* out, std::FILE* err)
         std::fprintf(out,
                      "truth roll: orthogonal LS line through eye midpoint, nose, mouth centre, "
                      "from vertical, clockwise on screen positive (RollEstimate's sense)\n");
+        std::fprintf(out,
+                     "primary method: image symmetry (RollByImageSymmetry: the box x %.2f warped "
+                     "upright into a %d px patch per angle, %s mirror asymmetry (saturation "
+                     "%.1f) over a region +-%.2f wide, axis offset up to %.2f of the patch; "
+                     "angles [%.0f, %.0f] in %.1f deg steps, golden section to %.2f deg); the "
+                     "corner-symmetry rows are the dissertation's method (5.2)\n",
+                     static_cast<double>(io.boxScale), io.patchSize,
+                     io.feature == vision::SymmetryFeature::Gradient ? "gradient" : "intensity",
+                     static_cast<double>(io.gradientSaturation),
+                     static_cast<double>(io.regionHalfWidthFraction),
+                     static_cast<double>(io.maxAxisOffsetFraction),
+                     static_cast<double>(io.minDegrees), static_cast<double>(io.maxDegrees),
+                     static_cast<double>(io.coarseStepDegrees),
+                     static_cast<double>(io.refineToleranceDegrees));
         if (o.perFace)
-            std::fprintf(out, "%-28s %4s %5s %7s %7s %7s %7s %5s %6s\n", "image", "line", "d_px",
-                         "rot", "truth", "ours", "linefit", "pts", "offset");
+            std::fprintf(out, "%-28s %4s %5s %7s %7s %7s %5s %7s %7s %5s %6s\n", "image", "line",
+                         "d_px", "rot", "truth", "image", "conf", "corner", "linefit", "pts",
+                         "offset");
 
         std::mt19937 rng(o.seed);
         std::uniform_real_distribution<double> angle(-o.rotateDegrees, o.rotateDegrees);
@@ -242,14 +277,24 @@ int runRollEval(const RollEvalOptions& o, std::FILE* out, std::FILE* err)
             for (int k = 0; k < n; ++k)
                 points.push_back(corners[static_cast<std::size_t>(k)].position);
 
+            // warpUpright's continuous coordinates: the box centre is x + width / 2.
+            const vision::Point2f boxCentre{
+                static_cast<float>(box.x) + 0.5f * static_cast<float>(box.width),
+                static_cast<float>(box.y) + 0.5f * static_cast<float>(box.height)};
+            const auto byImage = imageSymmetry.estimate(view, boxCentre, size);
+            if (byImage.confidence <= 0.f && imageSymmetry.lastError()[0] != '\0')
+                throw std::runtime_error(f.image + ": " + imageSymmetry.lastError());
             const auto ours = vision::estimateRollBySymmetry(points, centre, size);
             const auto theirs = vision::estimateRollBySymmetry(points, centre, size, plain);
             const auto line = vision::estimateRollByLineFit(points);
             const vision::Point2f faceCentre{0.5f * (crop.axis[0].x + crop.axis[2].x),
                                              0.5f * (crop.axis[0].y + crop.axis[2].y)};
             const auto atTruth = vision::estimateRollBySymmetry(points, faceCentre, size);
-            const double error = std::fabs(ours.rollDegrees - truthRoll);
-            symmetry.values.push_back(error);
+            const double error = std::fabs(byImage.rollDegrees - truthRoll);
+            image.values.push_back(error);
+            if (byImage.confidence >= 0.3f)
+                confident.values.push_back(error);
+            symmetry.values.push_back(std::fabs(ours.rollDegrees - truthRoll));
             dissertation.values.push_back(std::fabs(theirs.rollDegrees - truthRoll));
             lineFit.values.push_back(std::fabs(line.rollDegrees - truthRoll));
             upright.values.push_back(std::fabs(truthRoll));
@@ -259,7 +304,7 @@ int runRollEval(const RollEvalOptions& o, std::FILE* out, std::FILE* err)
                 std::atan2(f.rightEye.y - f.leftEye.y, f.rightEye.x - f.leftEye.x) * 180.0 /
                     3.14159265358979323846 +
                 rotation;
-            eyeLine.values.push_back(std::fabs(ours.rollDegrees - eyeRoll));
+            eyeLine.values.push_back(std::fabs(byImage.rollDegrees - eyeRoll));
             truthNoise.values.push_back(std::fabs(eyeRoll - truthRoll));
             if (f.eyeMouthDistance() >= 20.f)
                 large.values.push_back(error);
@@ -269,9 +314,11 @@ int runRollEval(const RollEvalOptions& o, std::FILE* out, std::FILE* err)
             centreOffsets.push_back(offset);
             boxPerEyeMouth.push_back(3.0 * size / side);  // the crop is 3 eye-mouth distances
             if (o.perFace)
-                std::fprintf(out, "%-28s %4d %5.1f %7.2f %7.2f %7.2f %7.2f %5d %6.3f\n",
+                std::fprintf(out, "%-28s %4d %5.1f %7.2f %7.2f %7.2f %5.2f %7.2f %7.2f %5d %6.3f\n",
                              f.image.c_str(), f.line, static_cast<double>(f.eyeMouthDistance()),
-                             rotation, truthRoll, static_cast<double>(ours.rollDegrees),
+                             rotation, truthRoll, static_cast<double>(byImage.rollDegrees),
+                             static_cast<double>(byImage.confidence),
+                             static_cast<double>(ours.rollDegrees),
                              static_cast<double>(line.rollDegrees), n, offset);
         }
 
@@ -283,20 +330,20 @@ int runRollEval(const RollEvalOptions& o, std::FILE* out, std::FILE* err)
         };
         std::fprintf(out,
                      "faces: %zu, detected %zu, missed %d (%d crops smaller than the window)\n",
-                     truth.size(), symmetry.values.size(), missed, tooSmall);
+                     truth.size(), image.values.size(), missed, tooSmall);
         std::fprintf(out,
                      "detected boxes: %.1f corners on average, box centre %.3f of the box side "
                      "from the face centre, box side %.2f x eye-mouth distance\n",
                      meanOf(cornerCounts), meanOf(centreOffsets), meanOf(boxPerEyeMouth));
         std::fprintf(out, "%-36s %6s %9s %8s %8s %8s\n", "method", "faces", "mean_deg", "p90_deg",
                      "within1", "within5");
-        for (const Errors* e : {&symmetry, &dissertation, &lineFit, &upright, &truthCentre,
-                                &eyeLine, &truthNoise, &large})
+        for (const Errors* e : {&image, &symmetry, &dissertation, &lineFit, &upright, &truthCentre,
+                                &eyeLine, &truthNoise, &large, &confident})
             std::fprintf(out, "%-36s %6zu %9.2f %8.2f %8.3f %8.3f\n", e->name, e->values.size(),
                          e->mean(), e->percentile(0.9), e->within(1.0), e->within(5.0));
+        std::fprintf(out, "method: image symmetry (RollByImageSymmetry)\n");
         std::fprintf(out, "roll: faces=%zu mean_err_deg=%.2f within1=%.3f within5=%.3f\n",
-                     symmetry.values.size(), symmetry.mean(), symmetry.within(1.0),
-                     symmetry.within(5.0));
+                     image.values.size(), image.mean(), image.within(1.0), image.within(5.0));
         return 0;
     } catch (const std::exception& e) {
         std::fprintf(err, "mirror-eval roll: %s\n", e.what());

@@ -1,11 +1,15 @@
 #pragma once
-// mirror-eval roll: initial roll by point symmetry (METHOD.md §4) on rotated CMU/MIT faces, the
+// mirror-eval roll: initial roll by dense image symmetry (RollByImageSymmetry, the primary result)
+// and by point symmetry (METHOD.md §4, the dissertation's method) on rotated CMU/MIT faces, the
 // protocol of issue 4: for each ground-truth face a square crop of 3x its eye-to-mouth distance
 // about the face centre (border replicated) is rotated about that centre by a seeded uniform
 // angle in [-rotate, rotate]; the landmarks go with it. Our FaceDetector runs on the crop; for the
 // detection holding the (rotated) eye midpoint and mouth centre, Shi-Tomasi corners in its box
-// (CornerDetector, min distance a fraction of the box side) give the roll by symmetry. Truth: the
+// (CornerDetector, min distance a fraction of the box side) give the roll by corner symmetry, and
+// the box's image its roll by image symmetry. Truth: the
 // best line through eye midpoint, nose and mouth centre. Also the line-fit baseline.
+
+#include "vision/roll_by_image_symmetry.hpp"
 
 #include <cstdio>
 #include <string>
@@ -25,6 +29,18 @@ struct RollEvalOptions {
     int minCropSide = 150;
     /// Corners are found on the crop smoothed by a Gaussian of this sigma x the box side (0: none).
     float cornerBlurFraction = 0.02f;
+    /// RollByImageSymmetry's options (the primary method); defaults are the class's.
+    int imagePatch = vision::RollByImageSymmetryOptions{}.patchSize;
+    float imageBoxScale = vision::RollByImageSymmetryOptions{}.boxScale;
+    float imageAxisOffset = vision::RollByImageSymmetryOptions{}.maxAxisOffsetFraction;
+    float imageHalfWidth = vision::RollByImageSymmetryOptions{}.regionHalfWidthFraction;
+    float imageTop = vision::RollByImageSymmetryOptions{}.regionTop;
+    float imageBottom = vision::RollByImageSymmetryOptions{}.regionBottom;
+    int imageBlur = vision::RollByImageSymmetryOptions{}.blurPasses;
+    float imageStep = vision::RollByImageSymmetryOptions{}.coarseStepDegrees;
+    bool imageIntensity = false;
+    float imageSaturation = vision::RollByImageSymmetryOptions{}.gradientSaturation;
+    float imageAxisSigma = vision::RollByImageSymmetryOptions{}.axisWeightSigma;
     int maxFaces = 0;  ///< 0: every face of the truth file; else the first N (tests)
     bool perFace = false;
 };

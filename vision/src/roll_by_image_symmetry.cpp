@@ -1,0 +1,345 @@
+// RollByImageSymmetry: coarse-to-fine search for the angle at which the face patch best matches
+// its own mirror image.
+
+#include "vision/roll_by_image_symmetry.hpp"
+
+#include "vision/upright_patch.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <stdexcept>
+
+namespace vision {
+
+namespace {
+
+constexpr int kMaxCoarseAngles = 512;
+
+}  // namespace
+
+RollByImageSymmetry::RollByImageSymmetry(const RollByImageSymmetryOptions& options)
+    : options_(options)
+{
+    const auto& o = options_;
+    if (o.patchSize < 8 || o.patchSize > 256)
+        throw std::invalid_argument("RollByImageSymmetry: patchSize must be in [8, 256]");
+    if (o.supersample < 1 || o.supersample > 8)
+        throw std::invalid_argument("RollByImageSymmetry: supersample must be in [1, 8]");
+    if (o.blurPasses < 0 || o.blurPasses > 8)
+        throw std::invalid_argument("RollByImageSymmetry: blurPasses must be in [0, 8]");
+    if (!(o.boxScale > 0.f && o.boxScale <= 4.f))
+        throw std::invalid_argument("RollByImageSymmetry: boxScale must be in (0, 4]");
+    if (!(o.coarseStepDegrees > 0.f) || !(o.maxDegrees >= o.minDegrees) ||
+        !std::isfinite(o.minDegrees) || !std::isfinite(o.maxDegrees) ||
+        (o.maxDegrees - o.minDegrees) / o.coarseStepDegrees >= kMaxCoarseAngles - 1)
+        throw std::invalid_argument(
+            "RollByImageSymmetry: need minDegrees <= maxDegrees and at most 511 coarse steps");
+    if (!(o.refineToleranceDegrees >= 0.f))
+        throw std::invalid_argument("RollByImageSymmetry: refineToleranceDegrees must be >= 0");
+    if (!(o.maxAxisOffsetFraction >= 0.f && o.maxAxisOffsetFraction <= 0.25f))
+        throw std::invalid_argument(
+            "RollByImageSymmetry: maxAxisOffsetFraction must be in [0, "
+            "0.25]");
+    if (!(o.regionHalfWidthFraction > 0.f && o.regionHalfWidthFraction <= 0.5f) ||
+        !(o.regionTop >= 0.f && o.regionTop < o.regionBottom && o.regionBottom <= 1.f))
+        throw std::invalid_argument("RollByImageSymmetry: region must lie inside the patch");
+    n_ = o.patchSize;
+    maxShift_ =
+        static_cast<int>(std::lround(2.f * o.maxAxisOffsetFraction * static_cast<float>(n_)));
+    const int big = n_ * o.supersample;
+    big_ = ImageBuffer(big, big, PixelFormat::Gray8);
+    const auto cells = static_cast<std::size_t>(n_) * static_cast<std::size_t>(n_);
+    patch_.assign(cells, 0.f);
+    tmp_.assign(cells, 0.f);
+    a_.assign(cells, 0.f);
+    b_.assign(cells, 0.f);
+    weight_.assign(static_cast<std::size_t>(2 * n_ + 2 * maxShift_ + 2), 1.f);
+    if (o.axisWeightSigma > 0.f) {
+        const float sigma2 = 2.f * o.axisWeightSigma * static_cast<float>(n_);  // in |x - x'| units
+        for (std::size_t d = 0; d < weight_.size(); ++d) {
+            const float t = static_cast<float>(d) / sigma2;
+            weight_[d] = std::exp(-0.5f * t * t);
+        }
+    }
+    if (!(o.gradientSaturation >= 0.f) || !(o.axisWeightSigma >= 0.f))
+        throw std::invalid_argument(
+            "RollByImageSymmetry: gradientSaturation and axisWeightSigma must be >= 0");
+}
+
+bool RollByImageSymmetry::prepare(const ConstImageView& gray, Point2f centre, float boxSize,
+                                  float rollDegrees) noexcept
+{
+    const int n = n_;
+    // Supersampling only pays where the square has more pixels than the patch: a small face is
+    // warped straight into it.
+    const float side = boxSize * options_.boxScale;
+    const int s = std::clamp(static_cast<int>(std::ceil(side / static_cast<float>(n) - 0.25f)), 1,
+                             options_.supersample);
+    ImageView big = big_.view();
+    big.width = n * s;
+    big.height = n * s;
+    if (!warpUpright(gray, centre, rollDegrees, side, big))
+        return false;
+
+    // Box-average the supersampled warp down to the patch.
+    const float inv = 1.f / static_cast<float>(s * s);
+    for (int y = 0; y < n; ++y) {
+        float* out = &patch_[static_cast<std::size_t>(y * n)];
+        for (int x = 0; x < n; ++x)
+            out[x] = 0.f;
+        for (int dy = 0; dy < s; ++dy) {
+            const std::uint8_t* in = big.row(y * s + dy);
+            for (int x = 0; x < n; ++x) {
+                int sum = 0;
+                for (int dx = 0; dx < s; ++dx)
+                    sum += in[x * s + dx];
+                out[x] += static_cast<float>(sum);
+            }
+        }
+        for (int x = 0; x < n; ++x)
+            out[x] *= inv;
+    }
+
+    // [1 2 1] passes, border repeated: the comparison is about features, not pixel noise.
+    for (int pass = 0; pass < options_.blurPasses; ++pass) {
+        for (int y = 0; y < n; ++y) {
+            const float* in = &patch_[static_cast<std::size_t>(y * n)];
+            float* out = &tmp_[static_cast<std::size_t>(y * n)];
+            for (int x = 0; x < n; ++x)
+                out[x] =
+                    0.25f * (in[std::max(x - 1, 0)] + 2.f * in[x] + in[std::min(x + 1, n - 1)]);
+        }
+        for (int y = 0; y < n; ++y) {
+            const float* up = &tmp_[static_cast<std::size_t>(std::max(y - 1, 0) * n)];
+            const float* mid = &tmp_[static_cast<std::size_t>(y * n)];
+            const float* down = &tmp_[static_cast<std::size_t>(std::min(y + 1, n - 1) * n)];
+            float* out = &patch_[static_cast<std::size_t>(y * n)];
+            for (int x = 0; x < n; ++x)
+                out[x] = 0.25f * (up[x] + 2.f * mid[x] + down[x]);
+        }
+    }
+
+    if (options_.feature == SymmetryFeature::Gradient) {
+        std::fill(a_.begin(), a_.end(), 0.f);
+        std::fill(b_.begin(), b_.end(), 0.f);
+        for (int y = 1; y < n - 1; ++y) {
+            const float* p = &patch_[static_cast<std::size_t>(y * n)];
+            float* gx = &a_[static_cast<std::size_t>(y * n)];
+            float* gy = &b_[static_cast<std::size_t>(y * n)];
+            for (int x = 1; x < n - 1; ++x) {
+                gx[x] = p[x + 1] - p[x - 1];
+                gy[x] = p[x + n] - p[x - n];
+            }
+        }
+        if (options_.gradientSaturation > 0.f) {
+            const float invSat = 1.f / options_.gradientSaturation;
+            for (std::size_t i = 0; i < a_.size(); ++i) {
+                a_[i] /= 1.f + std::fabs(a_[i]) * invSat;
+                b_[i] /= 1.f + std::fabs(b_[i]) * invSat;
+            }
+        }
+    } else {
+        // Intensities about the mean of the compared region (centred axis).
+        const int y0 = std::clamp(static_cast<int>(std::lround(options_.regionTop * n)), 0, n - 1);
+        const int y1 =
+            std::clamp(static_cast<int>(std::lround(options_.regionBottom * n)), y0 + 1, n);
+        const float half = options_.regionHalfWidthFraction * static_cast<float>(n);
+        const int x0 = std::clamp(static_cast<int>(std::ceil(0.5f * (n - 1) - half)), 0, n - 1);
+        const int x1 = std::clamp(static_cast<int>(std::floor(0.5f * (n - 1) + half)), x0, n - 1);
+        double sum = 0.0;
+        for (int y = y0; y < y1; ++y)
+            for (int x = x0; x <= x1; ++x)
+                sum += patch_[static_cast<std::size_t>(y * n + x)];
+        const auto mean = static_cast<float>(sum / ((y1 - y0) * (x1 - x0 + 1)));
+        for (std::size_t i = 0; i < a_.size(); ++i)
+            a_[i] = patch_[i] - mean;
+    }
+    return true;
+}
+
+float RollByImageSymmetry::asymmetryAbout(float a2) const noexcept
+{
+    // Mirror pairs (x, a2 - x) with x < a2 / 2: the axis is at a2 / 2 in patch pixel indices. A
+    // fractional a2 reads the mirror partner by linear interpolation, so the axis offset is
+    // continuous and its quantisation does not bias the angle.
+    const int n = n_;
+    const bool gradient = options_.feature == SymmetryFeature::Gradient;
+    // Gradient pixels have no value on the patch border.
+    const int lo = gradient ? 1 : 0;
+    const int hi = gradient ? n - 2 : n - 1;
+    const int y0 = std::clamp(static_cast<int>(std::lround(options_.regionTop * n)), lo, hi);
+    const int y1 =
+        std::clamp(static_cast<int>(std::lround(options_.regionBottom * n)), y0 + 1, hi + 1);
+    const float half = options_.regionHalfWidthFraction * static_cast<float>(n);
+    // Partners a2 - x must lie in [lo, hi - 1] (two samples for the interpolation).
+    const int xFirst = std::max({lo, static_cast<int>(std::ceil(0.5f * a2 - half)),
+                                 static_cast<int>(std::ceil(a2 - static_cast<float>(hi - 1)))});
+    const int xEnd = static_cast<int>(std::ceil(0.5f * a2));
+    if (xFirst >= xEnd)
+        return 1.f;
+    float cost = 0.f, norm = 0.f;
+    for (int y = y0; y < y1; ++y) {
+        const float* a = &a_[static_cast<std::size_t>(y * n)];
+        const float* b = &b_[static_cast<std::size_t>(y * n)];
+        for (int x = xFirst; x < xEnd; ++x) {
+            const float m = a2 - static_cast<float>(x);
+            const int m0 = std::min(static_cast<int>(m), hi - 1);
+            const float f = m - static_cast<float>(m0);
+            const float am = a[m0] + f * (a[m0 + 1] - a[m0]);
+            const float w =
+                weight_[static_cast<std::size_t>(std::lround(m - static_cast<float>(x)))];
+            if (gradient) {
+                const float bm = b[m0] + f * (b[m0 + 1] - b[m0]);
+                cost += w * (std::fabs(a[x] + am) + std::fabs(b[x] - bm));
+                norm += w * (std::fabs(a[x]) + std::fabs(am) + std::fabs(b[x]) + std::fabs(bm));
+            } else {
+                cost += w * std::fabs(a[x] - am);
+                norm += w * (std::fabs(a[x]) + std::fabs(am));
+            }
+        }
+    }
+    // A flat patch compares nothing: as asymmetric as unrelated halves.
+    return norm > 1e-3f ? cost / norm : 1.f;
+}
+
+float RollByImageSymmetry::bestOverOffsets(bool continuous) noexcept
+{
+    // Half-pixel steps of the axis, then golden section between the neighbours of the best.
+    const float centre2 = static_cast<float>(n_ - 1);
+    float best = INFINITY, bestA2 = centre2;
+    for (int k = -maxShift_; k <= maxShift_; ++k) {
+        const float score = asymmetryAbout(centre2 + static_cast<float>(k));
+        if (score < best) {
+            best = score;
+            bestA2 = centre2 + static_cast<float>(k);
+        }
+    }
+    if (continuous && maxShift_ > 0) {
+        constexpr float kInvPhi = 0.6180339887f;
+        float lo = std::max(centre2 - static_cast<float>(maxShift_), bestA2 - 1.f);
+        float hi = std::min(centre2 + static_cast<float>(maxShift_), bestA2 + 1.f);
+        float a = hi - kInvPhi * (hi - lo), b = lo + kInvPhi * (hi - lo);
+        float fa = asymmetryAbout(a), fb = asymmetryAbout(b);
+        while (hi - lo > 0.05f) {
+            if (fa <= fb) {
+                hi = b;
+                b = a;
+                fb = fa;
+                a = hi - kInvPhi * (hi - lo);
+                fa = asymmetryAbout(a);
+            } else {
+                lo = a;
+                a = b;
+                fa = fb;
+                b = lo + kInvPhi * (hi - lo);
+                fb = asymmetryAbout(b);
+            }
+        }
+        best = std::min({best, fa, fb});
+    }
+    return std::isfinite(best) ? best : 1.f;
+}
+
+float RollByImageSymmetry::scoreAngle(const ConstImageView& gray, Point2f centre, float boxSize,
+                                      float rollDegrees, bool continuous) noexcept
+{
+    if (!prepare(gray, centre, boxSize, rollDegrees))
+        return -1.f;
+    return bestOverOffsets(continuous);
+}
+
+float RollByImageSymmetry::asymmetry(const ConstImageView& gray, Point2f centre, float boxSize,
+                                     float rollDegrees) noexcept
+{
+    if (gray.empty() || gray.format != PixelFormat::Gray8 || !(boxSize > 0.f) ||
+        !std::isfinite(boxSize) || !std::isfinite(rollDegrees))
+        return -1.f;
+    return scoreAngle(gray, centre, boxSize, rollDegrees, true);
+}
+
+RollEstimate RollByImageSymmetry::estimate(const ConstImageView& gray, Point2f centre,
+                                           float boxSize) noexcept
+{
+    RollEstimate result;
+    lastError_[0] = '\0';
+    if (gray.empty() || gray.format != PixelFormat::Gray8) {
+        std::snprintf(lastError_, sizeof lastError_, "roll by image symmetry: need a Gray8 image");
+        return result;
+    }
+    if (!(boxSize >= 4.f) || !std::isfinite(boxSize) || !std::isfinite(centre.x) ||
+        !std::isfinite(centre.y)) {
+        std::snprintf(lastError_, sizeof lastError_,
+                      "roll by image symmetry: box size must be finite and >= 4 px");
+        return result;
+    }
+    const auto& o = options_;
+    const int count =
+        static_cast<int>(std::floor((o.maxDegrees - o.minDegrees) / o.coarseStepDegrees + 1e-4f)) +
+        1;
+    float scores[kMaxCoarseAngles] = {};
+    int bestIndex = 0;
+    for (int i = 0; i < count; ++i) {
+        scores[i] = scoreAngle(gray, centre, boxSize,
+                               o.minDegrees + o.coarseStepDegrees * static_cast<float>(i), false);
+        if (scores[i] < 0.f) {
+            std::snprintf(lastError_, sizeof lastError_,
+                          "roll by image symmetry: face square outside the image");
+            return result;
+        }
+        if (scores[i] < scores[bestIndex])
+            bestIndex = i;
+    }
+    float bestDegrees = o.minDegrees + o.coarseStepDegrees * static_cast<float>(bestIndex);
+    // The coarse scan reads the axis in half-pixel steps only (it just picks the basin); the
+    // refinement compares continuous offsets, the coarse best included.
+    float bestScore = scores[bestIndex];
+    if (o.refineToleranceDegrees > 0.f && count > 1) {
+        const float continuous = scoreAngle(gray, centre, boxSize, bestDegrees, true);
+        bestScore = continuous >= 0.f ? continuous : bestScore;
+    }
+
+    // Golden section between the neighbouring coarse angles; kept only when it scores at least
+    // as well as the coarse best.
+    if (o.refineToleranceDegrees > 0.f && count > 1) {
+        constexpr float kInvPhi = 0.6180339887f;
+        float lo = std::max(o.minDegrees, bestDegrees - o.coarseStepDegrees);
+        float hi = std::min(o.maxDegrees, bestDegrees + o.coarseStepDegrees);
+        float a = hi - kInvPhi * (hi - lo), b = lo + kInvPhi * (hi - lo);
+        float fa = scoreAngle(gray, centre, boxSize, a, true);
+        float fb = scoreAngle(gray, centre, boxSize, b, true);
+        for (int iter = 0; iter < 40 && hi - lo > o.refineToleranceDegrees; ++iter) {
+            if (fa <= fb) {
+                hi = b;
+                b = a;
+                fb = fa;
+                a = hi - kInvPhi * (hi - lo);
+                fa = scoreAngle(gray, centre, boxSize, a, true);
+            } else {
+                lo = a;
+                a = b;
+                fa = fb;
+                b = lo + kInvPhi * (hi - lo);
+                fb = scoreAngle(gray, centre, boxSize, b, true);
+            }
+        }
+        const float mid = 0.5f * (lo + hi);
+        const float fmid = scoreAngle(gray, centre, boxSize, mid, true);
+        if (fmid >= 0.f && fmid <= bestScore) {
+            bestDegrees = mid;
+            bestScore = fmid;
+        }
+    }
+
+    std::nth_element(scores, scores + count / 2, scores + count);
+    const float typical = scores[count / 2];
+    result.rollDegrees = bestDegrees;
+    result.symmetryDistance = bestScore;
+    result.confidence = typical > 1e-6f ? std::clamp(1.f - bestScore / typical, 0.f, 1.f) : 0.f;
+    const float half = o.regionHalfWidthFraction * static_cast<float>(n_);
+    const int rows = static_cast<int>(std::lround((o.regionBottom - o.regionTop) * n_));
+    result.points = static_cast<int>(half) * rows;
+    return result;
+}
+
+}  // namespace vision
