@@ -229,9 +229,37 @@ void FrameLoop::setUpOverlays(vision::Size size)
         MIRROR_LOG_WARN("overlay: %s", warning.c_str());
     }
     savedGeneration_ = selection_->generation();
+    warmUpOverlays(size);
     MIRROR_LOG_INFO("overlays: %d from %s, wearing %s (%s)", selection_->size(), path.c_str(),
                     selection_->name(selection_->selected()), toString(selection_->mode()));
-    (void)size;
+}
+
+void FrameLoop::warmUpOverlays(vision::Size size)
+{
+    // A software GL driver compiles each pipeline variant (an overlay opaque, blended, fading)
+    // the first time it is drawn: tens of milliseconds, and allocations, in the middle of the
+    // mirror. Draw every overlay once now, opaque and half faded, into the display's framebuffer
+    // (not presented), so the first person to try a hat sees no hitch.
+    const int n = selection_->size();
+    std::vector<vision::TrackedFace> faces;
+    for (int pass = 0; pass < 2; ++pass) {
+        faces.clear();
+        for (int i = 0; i < n && i < render::FaceOverlayLayer::kMaxFaces; ++i) {
+            vision::TrackedFace f;
+            f.id = 1 + pass * 100 + i;
+            f.centre = {static_cast<float>(size.width) * static_cast<float>(i + 1) /
+                            static_cast<float>(n + 1),
+                        static_cast<float>(size.height) * 0.5f};
+            f.size = static_cast<float>(size.height) * 0.25f;
+            f.state = vision::FaceState::Confirmed;
+            faces.push_back(f);
+            overlayLayer_->setOverlay(f.id, i, pass == 0 ? 1.f : 0.5f);
+        }
+        overlayLayer_->setFaces(faces);
+        renderer_->draw(vision::ConstImageView{}, display_->width(), display_->height(), "");
+    }
+    overlayLayer_->setFaces({});
+    overlayLayer_->clearSelection();
 }
 
 void FrameLoop::pollButtons() noexcept

@@ -110,6 +110,8 @@ TEST(MirrorEndToEnd, HeadlessOutputIsTheInputMirroredLeftRight)
 
 TEST(MirrorEndToEnd, TrainedCardShowsThePictureOnTheCard)
 {
+    if (!fs::exists(testing_support::binaryDir() + "/bin/cardgen"))
+        GTEST_SKIP() << "cardgen is not built here (MIRROR_BUILD_TOOLS=OFF: the sanitizer build)";
     // A cardgen sequence: frame 0 is the card filling the view, as for training.
     const std::string in = testing_support::freshOutputDir("e2e_card_in");
     const std::string out = testing_support::freshOutputDir("e2e_card_out");
@@ -242,6 +244,29 @@ TEST(MirrorEndToEnd, RebootMirrorRebuildsThePipelineAndKeepsRunning)
     // Two runs: the first stopped by the command, the second by the frame limit.
     EXPECT_NE(r.output.find("stopped (stop requested)"), std::string::npos) << r.output;
     EXPECT_NE(r.output.find("stopped (frame limit reached) after 20 frames"), std::string::npos)
+        << r.output;
+}
+
+}  // namespace
+
+namespace {
+
+TEST(MirrorEndToEnd, MissingGpioChipAndSerialPortAreOneWarningEachAndTheMirrorRuns)
+{
+    const std::string out = testing_support::freshOutputDir("e2e_missing_devices_out");
+    const RunResult r =
+        runMirror("--source synthetic --display headless:" + out +
+                      " --frames 10 --set 'source.rate=\"max\"' --set "
+                      "'buttons.chip=\"/nonexistent/gpiochip9\"' --set "
+                      "'console.serial=\"/dev/ttyNOSUCHPORT\"'",
+                  "selftest");
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_NE(r.output.find("/nonexistent/gpiochip9"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("running without buttons"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("/dev/ttyNOSUCHPORT"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("no serial console"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("FAIL gpio"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("stopped (frame limit reached) after 10 frames"), std::string::npos)
         << r.output;
 }
 

@@ -11,15 +11,54 @@
 #define MIRROR_ALLOC_HOOKS 1
 #endif
 
+#include <link.h>
+
+#include <cstring>
+
 namespace {
 thread_local bool tCounting = false;
 thread_local testing_support::AllocationCounts tCounts;
+
+/// Code ranges whose operator new calls count as ours: the executable and libstdc++.
+struct CodeRange {
+    std::uintptr_t begin = 0;
+    std::uintptr_t end = 0;
+};
+CodeRange gOurCode[8];
+int gOurCodeCount = 0;
+
+int noteRanges(dl_phdr_info* info, std::size_t, void*)
+{
+    const char* name = info->dlpi_name;
+    const bool executable = name == nullptr || name[0] == '\0';
+    if (!executable && std::strstr(name, "libstdc++") == nullptr)
+        return 0;
+    for (int i = 0; i < info->dlpi_phnum && gOurCodeCount < 8; ++i) {
+        const ElfW(Phdr)& ph = info->dlpi_phdr[i];
+        if (ph.p_type == PT_LOAD && (ph.p_flags & PF_X)) {
+            const std::uintptr_t begin = info->dlpi_addr + ph.p_vaddr;
+            gOurCode[gOurCodeCount++] = {begin, begin + ph.p_memsz};
+        }
+    }
+    return 0;
+}
+
+bool isOurCode(const void* address)
+{
+    const auto a = reinterpret_cast<std::uintptr_t>(address);
+    for (int i = 0; i < gOurCodeCount; ++i)
+        if (a >= gOurCode[i].begin && a < gOurCode[i].end)
+            return true;
+    return false;
+}
 }  // namespace
 
 namespace testing_support {
 
 AllocationScope::AllocationScope()
 {
+    if (gOurCodeCount == 0)
+        dl_iterate_phdr(noteRanges, nullptr);  // no allocation
     tCounts = {};
     tCounting = true;
 }
@@ -63,10 +102,14 @@ void noteCAllocation(const void* caller)
         ++tCounts.foreignMalloc;
 }
 
-void* cxxAllocate(std::size_t size, std::size_t alignment, bool nothrow)
+void* cxxAllocate(std::size_t size, std::size_t alignment, bool nothrow, const void* caller)
 {
-    if (tCounting)
-        ++tCounts.cxxNew;
+    if (tCounting) {
+        if (isOurCode(caller))
+            ++tCounts.cxxNew;
+        else
+            ++tCounts.foreignNew;
+    }
     if (size == 0)
         size = 1;
     void* p = alignment > alignof(std::max_align_t) ? __libc_memalign(alignment, size)
@@ -121,35 +164,35 @@ void free(void* p)
 
 void* operator new(std::size_t n)
 {
-    return cxxAllocate(n, 0, false);
+    return cxxAllocate(n, 0, false, __builtin_return_address(0));
 }
 void* operator new[](std::size_t n)
 {
-    return cxxAllocate(n, 0, false);
+    return cxxAllocate(n, 0, false, __builtin_return_address(0));
 }
 void* operator new(std::size_t n, const std::nothrow_t&) noexcept
 {
-    return cxxAllocate(n, 0, true);
+    return cxxAllocate(n, 0, true, __builtin_return_address(0));
 }
 void* operator new[](std::size_t n, const std::nothrow_t&) noexcept
 {
-    return cxxAllocate(n, 0, true);
+    return cxxAllocate(n, 0, true, __builtin_return_address(0));
 }
 void* operator new(std::size_t n, std::align_val_t a)
 {
-    return cxxAllocate(n, std::size_t(a), false);
+    return cxxAllocate(n, std::size_t(a), false, __builtin_return_address(0));
 }
 void* operator new[](std::size_t n, std::align_val_t a)
 {
-    return cxxAllocate(n, std::size_t(a), false);
+    return cxxAllocate(n, std::size_t(a), false, __builtin_return_address(0));
 }
 void* operator new(std::size_t n, std::align_val_t a, const std::nothrow_t&) noexcept
 {
-    return cxxAllocate(n, std::size_t(a), true);
+    return cxxAllocate(n, std::size_t(a), true, __builtin_return_address(0));
 }
 void* operator new[](std::size_t n, std::align_val_t a, const std::nothrow_t&) noexcept
 {
-    return cxxAllocate(n, std::size_t(a), true);
+    return cxxAllocate(n, std::size_t(a), true, __builtin_return_address(0));
 }
 void operator delete(void* p) noexcept
 {

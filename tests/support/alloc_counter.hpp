@@ -11,7 +11,12 @@
 namespace testing_support {
 
 struct AllocationCounts {
-    long cxxNew = 0;         ///< operator new / new[] calls, from anywhere
+    /// operator new / new[] calls from our executable or from libstdc++ (which our code calls
+    /// for strings, vectors, functions...)
+    long cxxNew = 0;
+    /// operator new calls from other shared libraries: the GL driver's shader compiler (LLVM)
+    /// compiles a pipeline variant the first time a state combination is drawn.
+    long foreignNew = 0;
     long ownMalloc = 0;      ///< C allocations whose caller is in the executable (our code)
     long foreignMalloc = 0;  ///< C allocations from shared libraries (GL driver, libc internals)
 };

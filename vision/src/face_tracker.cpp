@@ -2,6 +2,7 @@
 
 #include "vision/corner_detector.hpp"
 #include "vision/image_pyramid.hpp"
+#include "vision/roll_by_image_symmetry.hpp"
 #include "vision/roll_estimator.hpp"
 #include "vision/upright_patch.hpp"
 
@@ -24,17 +25,26 @@ constexpr float kRadToDeg = 57.29577951308232f;
 /// The verification patch shows the face box enlarged by this factor: the detector's window
 /// must fit around the face at a few scales.
 constexpr float kVerifyContext = 1.6f;
+/// Per-frame shifts of a face's centre (working-image pixels) below this are the noise of a
+/// still image (sensor noise, light changing), not motion.
+constexpr float kStillShift = 0.25f;
+/// Image-symmetry roll estimates less sure than this are not used (RollEstimate::confidence).
+constexpr float kMinImageRollConfidence = 0.15f;
 
 struct Track {
     TrackedFace face;
     std::array<Point2f, kMaxPoints> points{};
     int pointCount = 0;
     int lastMotionFrame = 0;  ///< frame index of the last frame the face showed it moves
-    Point2f anchor{};         ///< `travel` when the face last moved
-    /// How far the image content of the face has moved since the track began: the sum of the
-    /// motion model's shifts of the centre (tracking modes), or of the centre itself (detector
-    /// only). Re-anchoring the box on a detection is not motion and does not count.
-    Point2f travel{};
+    float anchor = 0.f;       ///< `path` when the face last moved
+    /// How far the image content of the face has travelled since the track began: the sum of
+    /// the per-frame shifts of its centre by the motion model (tracking modes) or of the centre
+    /// itself (detector only), each counted only above the noise of a still image. A person
+    /// never holds perfectly still (a talking head wobbles back and forth, which a net
+    /// displacement would cancel); a photo's shifts stay in the noise. Re-anchoring the box on
+    /// a detection is not motion and does not count.
+    float path = 0.f;
+    Point2f lastCentre{};
     int verifiedSinceAnchor = 0;
     bool detectedThisFrame = false;
 };
@@ -137,6 +147,8 @@ struct FaceTracker::Impl {
           motionIntegral(o.imageSize),
           patch(o.verifyPatchSize, o.verifyPatchSize, PixelFormat::Gray8)
     {
+        if (o.rollByImageSymmetry)
+            imageRoll = std::make_unique<RollByImageSymmetry>();
         options.detector.maxFrameSize = o.imageSize;
         options.fit.kind = fitKind(o.mode);
         tracks.resize(static_cast<std::size_t>(o.maxFaces));
@@ -151,6 +163,8 @@ struct FaceTracker::Impl {
     void trackPoints(Track& t) noexcept;
     void findCorners(Track& t, bool replenish) noexcept;
     void startTrack(Rect box) noexcept;
+    float initialRoll(const Track& t) noexcept;
+    void correctRoll(Track& t) noexcept;
     bool verifyTrack(Track& t) noexcept;
     void prepareScanMask(const ConstImageView& mask) noexcept;
     float motionFraction(Rect box) const noexcept;
@@ -171,8 +185,8 @@ struct FaceTracker::Impl {
     IntegralImage motionIntegral;
     bool haveMotion = false;
     ImageBuffer patch;
-
-    std::vector<Track> tracks;  ///< [0, trackCount) live, oldest first
+    std::unique_ptr<RollByImageSymmetry> imageRoll;  ///< null: corner symmetry only
+    std::vector<Track> tracks;                       ///< [0, trackCount) live, oldest first
     int trackCount = 0;
     int nextId = 1;
     int frameIndex = 0;
@@ -286,8 +300,9 @@ void FaceTracker::Impl::trackPoints(Track& t) noexcept
         return;
     }
     const Point2f moved = model.apply(t.face.centre);
-    t.travel.x += moved.x - t.face.centre.x;
-    t.travel.y += moved.y - t.face.centre.y;
+    const float shift = std::hypot(moved.x - t.face.centre.x, moved.y - t.face.centre.y);
+    if (shift > kStillShift)
+        t.path += shift;
     t.face.centre = moved;
     if (options.mode != FaceTrackingMode::Translation) {
         // Scale and roll of the similarity part (METHOD §3: th = atan2(a2, a1)).
@@ -358,7 +373,41 @@ bool FaceTracker::Impl::verifyTrack(Track& t) noexcept
     t.face.centre.y += 0.8f * (s * px + c * py);
     t.face.size += 0.8f * (size - t.face.size);
     t.verifiedSinceAnchor = 0;
+    correctRoll(t);
     return true;
+}
+
+float FaceTracker::Impl::initialRoll(const Track& t) noexcept
+{
+    // Beyond 5.2: the dense symmetry of the face image, which holds on small faces whose corner
+    // sets are not symmetric; the corners' point symmetry (5.2) when it has no answer.
+    if (imageRoll) {
+        const RollEstimate r =
+            imageRoll->estimate(grays[current].view(), t.face.centre, t.face.size);
+        if (r.confidence >= kMinImageRollConfidence)
+            return r.rollDegrees;
+    }
+    const int n = std::min(t.pointCount, kMaxPoints);
+    for (int i = 0; i < n; ++i)
+        rollPoints[static_cast<std::size_t>(i)] = t.points[static_cast<std::size_t>(i)];
+    const RollEstimate r = estimateRollBySymmetry(
+        std::span<const Point2f>(rollPoints.data(), static_cast<std::size_t>(n)), t.face.centre,
+        t.face.size);
+    return r.confidence > 0.f ? r.rollDegrees : 0.f;
+}
+
+void FaceTracker::Impl::correctRoll(Track& t) noexcept
+{
+    // Tracking accumulates small rotation errors (corners on hair and outline pull the fit
+    // towards no rotation): when a face is re-anchored, its roll is measured again from the
+    // image and the track moves halfway towards it.
+    if (!imageRoll || options.mode == FaceTrackingMode::Translation)
+        return;
+    const RollEstimate r = imageRoll->estimate(grays[current].view(), t.face.centre, t.face.size);
+    if (r.confidence < kMinImageRollConfidence ||
+        std::fabs(r.rollDegrees - t.face.rollDegrees) > 20.f)
+        return;
+    t.face.rollDegrees += 0.5f * (r.rollDegrees - t.face.rollDegrees);
 }
 
 void FaceTracker::Impl::startTrack(Rect box) noexcept
@@ -387,15 +436,7 @@ void FaceTracker::Impl::startTrack(Rect box) noexcept
         findCorners(t, false);
     if (options.initialRollBySymmetry && (options.mode == FaceTrackingMode::Similarity ||
                                           options.mode == FaceTrackingMode::Affine)) {
-        // §4: initial roll by point symmetry of the box's corners.
-        const int n = std::min(t.pointCount, kMaxPoints);
-        for (int i = 0; i < n; ++i)
-            rollPoints[static_cast<std::size_t>(i)] = t.points[static_cast<std::size_t>(i)];
-        const RollEstimate r = estimateRollBySymmetry(
-            std::span<const Point2f>(rollPoints.data(), static_cast<std::size_t>(n)), t.face.centre,
-            t.face.size);
-        if (r.confidence > 0.f)
-            t.face.rollDegrees = r.rollDegrees;
+        t.face.rollDegrees = initialRoll(t);
     }
     ++trackCount;
 }
@@ -558,17 +599,22 @@ bool FaceTracker::Impl::process(const ConstImageView& gray, const ConstImageView
         // stays put, whatever the light does to the motion mask), or by a box full of motion.
         // The first frames of a track settle its box (detections and re-anchoring move it a
         // few pixels): they are no evidence either way.
-        constexpr int kSettleFrames = 10;
-        if (options.mode == FaceTrackingMode::None)
-            t.travel = t.face.centre;
+        constexpr int kSettleFrames = 5;
+        if (options.mode == FaceTrackingMode::None) {
+            // Detections jitter by a pixel or so from frame to frame.
+            const float jump =
+                std::hypot(t.face.centre.x - t.lastCentre.x, t.face.centre.y - t.lastCentre.y);
+            if (t.face.age > 0 && jump > 1.5f)
+                t.path += jump;
+            t.lastCentre = t.face.centre;
+        }
         if (t.face.age < kSettleFrames)
-            t.anchor = t.travel;
-        const float dx = t.travel.x - t.anchor.x, dy = t.travel.y - t.anchor.y;
+            t.anchor = t.path;
         const float step = std::max(1.5f, options.minFaceMoveFraction * t.face.size);
-        if (dx * dx + dy * dy > step * step ||
+        if (t.path - t.anchor > step ||
             motionFraction(t.face.box()) >= options.minFaceMotionFraction) {
             t.lastMotionFrame = frameIndex;
-            t.anchor = t.travel;
+            t.anchor = t.path;
         }
         const bool moved =
             !haveMotion || frameIndex - t.lastMotionFrame <= options.staticDropFrames;
@@ -587,8 +633,14 @@ bool FaceTracker::Impl::process(const ConstImageView& gray, const ConstImageView
         } else {
             t.face.state = FaceState::Missing;
         }
+        // A face found still (a photo on the wall, detected while someone moved nearby) is
+        // never shown and is let go; a shown face that stops moving stays until it has been
+        // still for a long time (a person may stand still in front of a mirror).
+        if (t.face.state == FaceState::Tentative && !movedLately &&
+            t.face.age > 2 * options.confirmMotionFrames)
+            keep = false;
         if (!moved)
-            keep = false;  // static for too long: a poster, not a person
+            keep = false;
         if (keep && options.mode != FaceTrackingMode::None && seen &&
             t.pointCount < options.minCornersPerFace)
             findCorners(t, true);

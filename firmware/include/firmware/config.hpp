@@ -97,7 +97,7 @@ struct FacesConfig {
     int graceFrames = 5;
     int maxFaces = 8;
     int detectionBudget = 5000;  ///< detector windows per frame; 0 = whole scan every frame
-    double staticDropS = 10.0;   ///< a face that has not moved this long is background
+    double staticDropS = 300.0;   ///< a face that has not moved this long is background
     int motionComponents = 3;
     double motionLearningRate = 0.005;
 };

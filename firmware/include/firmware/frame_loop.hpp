@@ -114,6 +114,7 @@ private:
     void formatCard(Reply& reply) const noexcept;
     void addFaceStages(vision::Size size);
     void setUpOverlays(vision::Size size);
+    void warmUpOverlays(vision::Size size);
     void pollButtons() noexcept;
     void pollKeys() noexcept;
     void runButtonAction(ButtonAction action) noexcept;

@@ -95,18 +95,22 @@ struct FaceTrackerOptions {
     /// A detection and a track are the same face when their boxes overlap by at least this IoU.
     float matchIou = 0.3f;
     bool initialRollBySymmetry = true;  ///< §4; otherwise new faces start at roll 0
+    /// Roll from the dense symmetry of the face image (RollByImageSymmetry) for new faces and,
+    /// at each re-anchoring, to correct the tracked roll; false: corner point symmetry only.
+    bool rollByImageSymmetry = true;
     /// Static regions are ignored (the dissertation's motion rule; with a motion mask only): a
     /// face shows it moves when its centre leaves the place it last moved from by
     /// minFaceMoveFraction of its size (at least 1.5 px), or when this fraction of the inner
     /// half of its box is foreground. A photo on the wall beside a moving person does neither
     /// (its mask fraction stays at a few percent, but lighting changes can raise it, hence the
     /// high threshold). A Tentative track is confirmed only if it moved within the last
-    /// confirmMotionFrames frames, and a track that has not moved for staticDropFrames frames
-    /// is dropped (a poster, a photo).
-    float minFaceMoveFraction = 0.05f;
+    /// confirmMotionFrames frames (and a Tentative one that has not, after twice that, is
+    /// dropped), and a shown track that has not moved for staticDropFrames frames is dropped
+    /// (a photo that slipped through; a person standing still keeps their hat much longer).
+    float minFaceMoveFraction = 0.015f;
     float minFaceMotionFraction = 0.6f;
     int confirmMotionFrames = 30;
-    int staticDropFrames = 150;
+    int staticDropFrames = 9000;
     /// Every this many verified frames, verification runs a grouped scan of the upright patch
     /// instead of first hit and re-centres / re-sizes the track from it (stops scale drift).
     int reanchorEvery = 5;
