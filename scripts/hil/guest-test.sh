@@ -177,23 +177,223 @@ check_mirror_headless() {
     ls "$out"/*.png >/dev/null 2>&1 || { echo "no snapshot in $out"; return 1; }
 }
 
+# console_round WAIT LINE...: type LINEs on the mirror's console (ttyS1) from the host, one a
+# second ("@flood N": N random bytes instead of a line), and keep what comes back in
+# $R/console-NAME.txt (NAME = the caller's check) once the last reply matches $expect (an extended
+# regex) or WAIT seconds passed. One round at a time; the host's console_driver does the typing.
+console_round() {
+    local wait=$1 name=${FUNCNAME[1]#check_}
+    shift
+    # ready and done first: the host starts a round on console.ready alone.
+    rm -f "$R/console.ready" "$R/console.done"
+    rm -f "$R"/console.*
+    printf '%s\n' "$@" >"$R/console.send"
+    printf '%s\n' "$expect" >"$R/console.expect"
+    echo "$wait" >"$R/console.wait"
+    touch "$R/console.ready"
+    wait_for $((wait + 30 + $#)) test -e "$R/console.done" || { echo "host never finished"; return 1; }
+    # Without CRs and the console's prompts ("> "), which precede the first line of each reply.
+    tr -d '\r' <"$R/console.txt" | sed 's/^\(> \)*//' >"$R/console-$name.txt"
+    CONSOLE=$R/console-$name.txt
+}
+
+# unit_show PROPERTY: one property of mirror.service.
+unit_show() { systemctl show -p "$1" --value mirror.service; }
+
+# journal_has TEXT [N]: the service's journal holds TEXT at least N (1) times.
+journal_has() {
+    (($(journalctl --no-pager -q -o cat -u mirror.service 2>/dev/null | grep -acF "$1") >= ${2:-1}))
+}
+
 # The mirror's own console on ttyS1 (the service's drop-in sets console.serial): the host types
-# `status` and `selftest`; every selftest line must PASS.
+# `status`, `overlay` and `selftest`; status names the libcamera source and the DRM display, every
+# selftest line (camera, display, state, faces, overlays, gpio) must PASS.
 check_console_selftest() {
     # selftest asks for recent frames: wait for READY=1 (the unit turns active after the first
     # frame is shown), which under TCG comes ~60 s after the postinst started it.
     wait_for 150 bash -c '[ "$(systemctl is-active mirror.service)" = active ]' ||
         { echo "mirror.service not active: $(systemctl is-active mirror.service)"; return 1; }
-    rm -f "$R"/console.*
-    printf 'status\nselftest\n' >"$R/console.send"
-    echo 'selftest: ' >"$R/console.expect"
-    touch "$R/console.ready"
-    wait_for 90 test -e "$R/console.done" || { echo "host never finished"; return 1; }
-    local t=$R/console.txt
-    grep -aq 'selftest: all PASS' "$t" ||
-        { echo "selftest did not pass: $(tr -d '\r' <"$t" | grep -a 'FAIL\|selftest\|error' | head -5 | tr '\n' ' ')"; return 1; }
+    log "mirror.service active"
+    local expect='selftest: '
+    console_round 60 status overlay selftest || return 1
+    local t=$CONSOLE
+    grep -q '^source: .*libcamera' "$t" || { echo "status shows no libcamera source: $(grep -a '^source' "$t")"; return 1; }
+    grep -q '^display: drm' "$t" || { echo "status shows no drm display: $(grep -a '^display' "$t")"; return 1; }
+    grep -q '^overlay: ' "$t" || { echo "no overlay reply"; return 1; }
+    grep -q 'selftest: all PASS' "$t" ||
+        { echo "selftest did not pass: $(grep -a 'FAIL\|selftest\|error' "$t" | head -5 | tr '\n' ' ')"; return 1; }
+    local n
+    for n in camera display state faces overlays gpio; do
+        grep -q "^PASS $n: " "$t" || { echo "selftest has no 'PASS $n'"; return 1; }
+    done
     grep -aq 'error:' "$t" && { echo "the console answered an error: $(grep -a 'error:' "$t" | head -2)"; return 1; }
+    grep '^overlay: ' "$t" | head -1 >"$R/overlay-before.txt"
     return 0
+}
+
+# The unit reached READY (Type=notify) as user mirror, without restarts so far.
+check_service_ready() {
+    [ "$(cat /proc/1/comm)" = systemd ] || { echo "PID 1 is not systemd (HIL_SYSTEMD=0)"; return 1; }
+    local ActiveState="" NRestarts="" MainPID=""
+    eval "$(systemctl show -p ActiveState,NRestarts,MainPID mirror.service)"
+    local state=$ActiveState restarts=$NRestarts pid=$MainPID
+    [ "$state" = active ] || { echo "not active: $state"; return 1; }
+    [ "$restarts" = 0 ] || { echo "restarted $restarts times"; return 1; }
+    [ "$(stat -c %U "/proc/$pid")" = mirror ] || { echo "main process $pid does not run as user mirror"; return 1; }
+}
+
+# A short press of button 1 (gpio-sim line 0 pulled low for 0.15 s, beyond the 30 ms debounce,
+# short of the long press) selects the next overlay: the log says so and `overlay` differs. The
+# hold is timed by bash's own `read -t` (no process to start: under TCG starting `sleep` alone
+# can take longer than a long press).
+check_button_press() {
+    local GPIO_CHIP="" GPIO_DEV="" timer=/tmp/hil-timer
+    gpio_names
+    [ -p $timer ] || mkfifo $timer
+    exec 7<>$timer
+    gpio_pull 0 down
+    read -r -t 0.15 -u 7
+    gpio_pull 0 up
+    exec 7>&-
+    wait_for 20 journal_has 'button 1 short press: next' ||
+        { echo "no 'button 1 short press: next' in the journal: $(journalctl -q -o cat -u mirror.service | grep -a button | tail -3)"; return 1; }
+    local expect='overlay: '
+    console_round 20 overlay || return 1
+    local before after
+    before=$(cat "$R/overlay-before.txt" 2>/dev/null)
+    after=$(grep -a '^overlay: ' "$CONSOLE" | head -1)
+    [ -n "$after" ] || { echo "no reply to overlay"; return 1; }
+    [ "$before" != "$after" ] || { echo "overlay unchanged after the press: $after"; return 1; }
+    log "overlay: '$before' -> '$after'"
+}
+
+# `snapshot` on the DRM display: the frame read back before the page flip, written as a PNG in
+# the state folder by user mirror; copied to the results for the host to check its pixels.
+check_snapshot_drm() {
+    # The path comes with a later frame, after the console's prompt ("> snapshot: /...png").
+    local expect='snapshot: /.*\.png'
+    console_round 30 snapshot || return 1
+    local png
+    png=$(grep -aoE 'snapshot: /[^ ]*\.png' "$CONSOLE" | head -1 | cut -d' ' -f2)
+    [ -n "$png" ] || { echo "no snapshot path: $(grep -a snapshot "$CONSOLE" | tr '\n' ' ')"; return 1; }
+    [ -f "$png" ] || { echo "$png missing"; return 1; }
+    [ "$(stat -c %U "$png")" = mirror ] || { echo "$png is not owned by user mirror"; return 1; }
+    cp "$png" "$R/snapshot-drm.png"
+}
+
+# The camera unplugged while the mirror runs (vimc unbound from its driver): libcamera 0.0.3
+# cannot let go of it, so the mirror says so once and exits for systemd to start it again; the
+# camera is bound again and the new process reaches READY and delivers frames.
+check_camera_replug() {
+    local drv=/sys/bus/platform/drivers/vimc
+    [ -e "$drv/vimc.0" ] || { echo "vimc.0 not bound to vimc"; return 1; }
+    echo vimc.0 >"$drv/unbind" || { echo "cannot unbind vimc.0"; return 1; }
+    log "vimc.0 unbound"
+    local gone='camera vanished; libcamera needs a new process'
+    wait_for 30 journal_has "$gone"
+    local seen=$?
+    echo vimc.0 >"$drv/bind" || { echo "cannot bind vimc.0 again"; return 1; }
+    udevadm settle --timeout=30
+    log "vimc.0 bound again"
+    ((seen == 0)) || { echo "no '$gone' in the journal: $(journalctl -q -o cat -u mirror.service | tail -3)"; return 1; }
+    wait_for 150 bash -c '(($(systemctl show -p NRestarts --value mirror.service) >= 1)) &&
+        [ "$(systemctl is-active mirror.service)" = active ]' ||
+        { echo "not back: $(systemctl show -p ActiveState,SubState,Result,NRestarts mirror.service | tr '\n' ' ')"; return 1; }
+    log "mirror.service active again"
+    journalctl --no-pager -u mirror.service >"$R/service-journal.txt" 2>&1
+    (($(grep -acF "$gone" "$R/service-journal.txt") == 1)) || { echo "the unplug was logged more than once"; return 1; }
+    grep -q 'Main process exited, code=exited, status=3/' "$R/service-journal.txt" ||
+        { echo "the mirror did not exit with code 3 (source)"; return 1; }
+    # The first frames of a new process are slow under TCG (shaders compiled, ~2 s each), and
+    # selftest wants a frame within the last 2 s: ask up to three times.
+    local expect='selftest: ' try
+    for try in 1 2 3; do
+        console_round 60 overlay selftest || return 1
+        grep -q '^PASS camera: ' "$CONSOLE" && break
+        ((try < 3)) || { echo "camera not back: $(grep -a 'camera' "$CONSOLE" | head -2)"; return 1; }
+        sleep 2
+    done
+    # What the new process wears (the choice is kept in the state folder): button_press changes it.
+    grep '^overlay: ' "$CONSOLE" | head -1 >"$R/overlay-before.txt"
+}
+
+# A second mirror run directly (root, synthetic scene) on the same DRM card while the service
+# holds it, with a GPIO chip and a serial port that do not exist. Started in the background
+# (start-up under TCG takes ~30 s) and checked by display_fault, gpio_absent, serial_absent.
+check_fault_run_start() {
+    # An impossible mode: the display cannot be made; one line naming it, exit code 4 (display).
+    # In the background too: both start-ups (~20 s and ~45 s under TCG) overlap the flood.
+    # Not on this check's stdout: the check's caller would wait for it.
+    (
+        rc=0
+        timeout 90 "$HIL_BIN/mirror" --source synthetic --display drm --set 'display.mode="7777x7777"' \
+            --set console.stdin=false --set buttons.enabled=false --set "state.dir=\"/tmp/hil-mode\"" \
+            >"$R/mirror-badmode.log" 2>&1 </dev/null || rc=$?
+        echo "$rc" >"$R/mirror-badmode.rc"
+    ) >/dev/null 2>&1 &
+    setsid "$HIL_BIN/mirror" --source synthetic --display drm --set 'display.mode="640x480"' \
+        --set source.width=320 --set source.height=240 --set console.stdin=false \
+        --set 'console.serial="/dev/ttyHIL-missing"' --set 'buttons.chip="gpiochip-missing"' \
+        --set 'buttons.lines=[0, 1]' --set "state.dir=\"/tmp/hil-fault\"" \
+        >"$R/mirror-faults.log" 2>&1 </dev/null &
+    echo $! >"$R/mirror-faults.pid"
+}
+
+# The display cannot be made in the mode asked for: the mirror names the mode and the modes
+# there are in one line and exits with the display's code (4) before anything else starts.
+check_display_bad_mode() {
+    wait_for 60 test -s "$R/mirror-badmode.rc" || { echo "the run did not end"; return 1; }
+    local rc
+    rc=$(cat "$R/mirror-badmode.rc")
+    ((rc == 4)) || { echo "exit $rc, not 4: $(tail -2 "$R/mirror-badmode.log")"; return 1; }
+    grep -q 'has no mode 7777x7777 (modes: ' "$R/mirror-badmode.log" ||
+        { echo "the mode is not named: $(tail -2 "$R/mirror-badmode.log")"; return 1; }
+}
+
+# The serial console under a flood of random bytes typed on ttyS1 (the shell reads at most 4 KiB
+# per frame and rejects binary lines); then `status` must still be answered. HIL_FLOOD_BYTES
+# (256 KiB): under TCG the mirror takes in ~10 KiB/s, so 1 MiB takes ~100 s, more than the budget.
+check_serial_flood() {
+    [ "$(unit_show ActiveState)" = active ] || { echo "mirror.service not active"; return 1; }
+    local expect='^source: ' restarts
+    restarts=$(unit_show NRestarts)
+    console_round 120 "@flood ${HIL_FLOOD_BYTES:-262144}" '' status || return 1
+    grep -q '^source: .*libcamera' "$CONSOLE" || { echo "no status after the flood ($(wc -c <"$CONSOLE") bytes back)"; return 1; }
+    [ "$(unit_show NRestarts)" = "$restarts" ] || { echo "the service restarted during the flood"; return 1; }
+    log "$(cat "$R/console.flood" 2>/dev/null), $(grep -c 'binary data ignored' "$CONSOLE") binary lines rejected"
+}
+
+# The direct run could not set its mode (the service is DRM master): one clear line, frames
+# declined, retried; once the service stops, its mode set succeeds ("display is back").
+check_display_fault() {
+    local pid l=$R/mirror-faults.log
+    pid=$(cat "$R/mirror-faults.pid" 2>/dev/null)
+    [ -n "$pid" ] || { echo "no fault run"; return 1; }
+    wait_for 90 grep -q 'mode set failed' "$l" ||
+        { echo "no 'mode set failed' line: $(tail -3 "$l")"; kill "$pid" 2>/dev/null; return 1; }
+    kill -0 "$pid" 2>/dev/null || { echo "the mirror exited after the failed mode set: $(tail -2 "$l")"; return 1; }
+    log "fault run: mode set failed; stopping mirror.service"
+    systemctl stop mirror.service
+    wait_for 30 grep -q 'display is back' "$l"
+    local back=$?
+    kill -TERM "$pid" 2>/dev/null
+    wait_for 20 bash -c "! kill -0 $pid" || { kill -KILL "$pid"; echo "the mirror did not stop on SIGTERM"; return 1; }
+    ((back == 0)) || { echo "display not back after the service let go: $(tail -3 "$l")"; return 1; }
+    (($(grep -c 'mode set failed' "$l") == 1)) || { echo "the mode set failure was logged $(grep -c 'mode set failed' "$l") times"; return 1; }
+    grep -q 'stopped (stop requested)' "$l" || { echo "no clean stop: $(tail -2 "$l")"; return 1; }
+}
+
+# The same run without its GPIO chip and serial port: one warning each, the rest worked.
+check_gpio_absent() {
+    local l=$R/mirror-faults.log
+    (($(grep -c 'buttons: .*; running without buttons' "$l") == 1)) ||
+        { echo "expected one buttons warning: $(grep -a buttons "$l" | head -3)"; return 1; }
+}
+
+check_serial_absent() {
+    local l=$R/mirror-faults.log
+    (($(grep -c 'console: .*/dev/ttyHIL-missing.*; no serial console' "$l") == 1)) ||
+        { echo "expected one console warning: $(grep -a console "$l" | head -3)"; return 1; }
 }
 
 # --- the Debian package and the service ----------------------------------------------------
@@ -201,8 +401,13 @@ check_console_selftest() {
 # dpkg -i into the tmpfs overlay root, as on a clean machine: files, conffile, the user, the unit.
 check_package_installed() {
     [ -f "${HIL_PACKAGE:-}" ] || { echo "no package (HIL_PACKAGE=${HIL_PACKAGE:-})"; return 1; }
-    # The test decides when the mirror starts (the postinst starts it under systemd), and on what:
-    # the synthetic scene on the headless display, snapshots in the state directory.
+    # The test decides what the mirror runs on (the postinst starts it under systemd): vimc through
+    # libcamera at 320x240, vkms at 640x480, the buttons on the gpio-sim chip's lines 0 and 1
+    # (pulled up: released), the console on ttyS1. Snapshots go to the state folder.
+    local GPIO_CHIP="" GPIO_DEV=""
+    gpio_names
+    [ -n "$GPIO_CHIP" ] || { echo "no gpio-sim chip (check gpio_sim first)"; return 1; }
+    gpio_pull 0 up && gpio_pull 1 up || return 1
     mkdir -p /etc/systemd/system/mirror.service.d
     local watchdog=60
     [ -z "${HIL_SERVICE_TYPE:-}" ] || watchdog=0  # a unit checked without READY/WATCHDOG support
@@ -211,9 +416,10 @@ check_package_installed() {
 # Under TCG start-up (libraries over 9p, llvmpipe) takes ~50 s and frames are ~70x slower.
 TimeoutStartSec=150
 WatchdogSec=$watchdog
+RestartSec=1
 ${HIL_SERVICE_TYPE:+Type=$HIL_SERVICE_TYPE}
 ExecStart=
-ExecStart=/usr/bin/mirror --config /etc/mirror/mirror.toml --source synthetic --display headless:/var/lib/mirror/snapshots --set source.width=320 --set source.height=240 --set display.width=320 --set display.height=240 --set display.snapshot_every=5 --set console.stdin=false --set 'console.serial="/dev/ttyS1"' --set buttons.enabled=false
+ExecStart=/usr/bin/mirror --config /etc/mirror/mirror.toml --source libcamera:0 --display drm --set source.width=320 --set source.height=240 --set 'display.mode="640x480"' --set console.stdin=false --set 'console.serial="/dev/ttyS1"' --set 'buttons.chip="$GPIO_CHIP"' --set 'buttons.lines=[0, 1]' --set buttons.long_press_ms=2000
 UNIT
     # Installed as on a machine without this user, these files, or the unit enabled. dpkg's
     # database is the host's installed-package list (dependencies are checked against it) without
@@ -230,36 +436,12 @@ UNIT
         [ -f /lib/systemd/system/mirror.service ] || { echo "files missing after dpkg -i"; return 1; }
     grep -qx /etc/mirror/mirror.toml "$admin/info/mirror.conffiles" || { echo "config is not a conffile"; return 1; }
     id mirror >"$R/mirror-user.txt" 2>&1 || { echo "no user mirror"; return 1; }
-    local g
+    local g groups
+    groups=$(id -nG mirror)
     for g in video render gpio dialout; do
-        id -nG mirror | grep -qw "$g" || { echo "user mirror not in group $g"; return 1; }
+        grep -qw "$g" <<<"$groups" || { echo "user mirror not in group $g"; return 1; }
     done
     [ "$(systemctl is-enabled mirror.service 2>&1)" = enabled ] || { echo "mirror.service not enabled"; return 1; }
-}
-
-# systemctl start returns once the unit sent READY=1 (Type=notify): the first frame is shown.
-# Then the unit's sandbox must let it run: snapshots written as user mirror in its StateDirectory.
-check_service_ready() {
-    [ "$(cat /proc/1/comm)" = systemd ] || { echo "PID 1 is not systemd (HIL_SYSTEMD=0)"; return 1; }
-    local rc=0 why=""
-    log "systemctl start mirror"
-    timeout 100 systemctl start mirror.service >"$R/service-start.txt" 2>&1 || rc=$?
-    if ((rc != 0)); then
-        why="systemctl start failed ($rc)"
-    elif ! wait_for 90 bash -c 'journalctl --no-pager -u mirror.service >"$0/service-journal.txt" 2>&1; ls /var/lib/mirror/snapshots/*.png' "$R"; then
-        why="no snapshot in /var/lib/mirror/snapshots"
-    else
-        local png
-        png=$(ls /var/lib/mirror/snapshots/*.png | head -1)
-        [ "$(stat -c %U "$png")" = mirror ] || why="$png is not owned by user mirror"
-    fi
-    systemctl status --no-pager -n 0 mirror.service >"$R/service-status.txt" 2>&1
-    journalctl --no-pager -u mirror.service >"$R/service-journal.txt" 2>&1
-    if [ -n "$why" ]; then
-        echo "$why: $(systemctl show -p ActiveState,SubState,Result,NRestarts mirror.service | tr '\n' ' ')"
-        return 1
-    fi
-    systemctl stop mirror.service || { echo "systemctl stop failed"; return 1; }
 }
 
 log "guest up, kernel $KVER, PID 1 $(cat /proc/1/comm)"

@@ -11,18 +11,28 @@ here=$(cd "$(dirname "$0")" && pwd)
 
 [ $# -ge 1 ] || { echo "usage: $0 BUILD_DIR" >&2; exit 2; }
 build=$(cd "$1" && pwd)
-timeout_s=${HIL_TIMEOUT:-290}
+timeout_s=${HIL_TIMEOUT:-330}
 
 # The checks the guest runs, in order; each must print "HIL PASS name" (HIL_CHECKS="a b": only
-# those). With packaging configured (cmake/packaging.cmake) the .deb is built, installed in the
-# guest right after the modules (the postinst starts the unit, whose ~40 s start-up under TCG
-# then overlaps the device checks), and the unit must reach READY=1 (service_ready); the service
-# runs the same binary as mirror_headless, which it replaces; it owns ttyS1 (console.serial), so
-# console_selftest (status and selftest typed on the mirror's console) replaces serial_port (a
-# shell responder). HIL_SERVICE_TYPE=simple checks the unit with a firmware that does not send
-# READY/WATCHDOG yet.
+# those). Without packaging: the devices one by one (cam, gpiomon, a shell on ttyS1) and the
+# mirror headless. With packaging (cmake/packaging.cmake) the .deb is built and installed in the
+# guest, whose postinst starts the unit on the real devices (a drop-in: libcamera:0 on vimc, drm
+# on vkms, the buttons on the gpio-sim lines 0 and 1, the console on ttyS1); then the service is
+# checked through its console and the faults are tried (package_checks). The host checks the
+# snapshot's pixels afterwards (snapshot_image). HIL_SERVICE_TYPE=simple checks the unit with a
+# firmware that does not send READY/WATCHDOG yet.
 device_checks="camera_listed camera_capture display_connected gpio_sim gpio_edges serial_port"
 checks=${HIL_CHECKS:-"modules $device_checks mirror_headless"}
+# gpio_sim before the package: the service's drop-in names the chip. camera_listed after it: cam
+# only lists (the service owns the camera once it runs), while the service starts up (~50 s).
+# camera_replug early: the fault runs must start after it (a second process opening the card
+# while the service is away would become DRM master), and their ~45-75 s start-up then overlaps
+# the button, snapshot and flood checks on the restarted service.
+package_checks="modules gpio_sim display_connected package_installed camera_listed
+    console_selftest service_ready camera_replug fault_run_start button_press snapshot_drm
+    serial_flood display_bad_mode display_fault gpio_absent serial_absent"
+# The mode of vkms the service is given (the snapshot's size).
+display_size="640 480"
 
 [ "$(uname -m)" = x86_64 ] || hil_skip "the emulated machine is x86-64 (host is $(uname -m))"
 hil_find_kernel
@@ -42,7 +52,8 @@ if [ -z "${HIL_CHECKS:-}" ] && [ -f "$build/CPackConfig.cmake" ] && [ "${HIL_SYS
     (cd "$build" && cpack -G DEB >"$work/cpack.log" 2>&1) ||
         { cat "$work/cpack.log" >&2; hil_say "cpack failed"; exit 1; }
     package=$(ls -t "$build"/package/mirror_*.deb | head -1)
-    checks="modules package_installed ${device_checks/serial_port/console_selftest} service_ready"
+    # shellcheck disable=SC2086,SC2116 # the words on one line
+    checks=$(echo $package_checks)
 fi
 
 results=$work/results
@@ -55,6 +66,7 @@ HIL_SOURCE_DIR=$(cd "$here/../.." && pwd)
 HIL_CHECKS="$checks"
 HIL_PACKAGE=$package
 HIL_SERVICE_TYPE=${HIL_SERVICE_TYPE:-}
+HIL_FLOOD_BYTES=${HIL_FLOOD_BYTES:-262144}
 ENV
 
 # systemd as PID 1 in the guest (HIL_SYSTEMD=0: a plain shell script as init, no units).
@@ -77,33 +89,52 @@ timeout --kill-after=10 "$timeout_s" qemu-system-x86_64 \
     </dev/null >"$qemu_log" 2>&1 &
 qemu=$!
 
-# The host end of ttyS1: once the guest wrote console.send (lines to type) and console.expect
-# (an extended regex) and created console.ready, type each line with Enter, keep everything read
-# in console.txt until the pattern shows up (or 60 s), then create console.done.
+# The host end of ttyS1, one round at a time: once the guest wrote console.send (lines to type;
+# "@flood N" = N random bytes), console.expect (an extended regex) and console.wait (seconds),
+# and created console.ready (which the driver removes), type each line with Enter, keep
+# everything read in console.txt until the pattern shows up (or the wait is over), then create
+# console.done.
 console_driver() {
-    local pty deadline=$((SECONDS + timeout_s)) line
-    until [ -e "$results/console.ready" ]; do
-        kill -0 $qemu 2>/dev/null && ((SECONDS < deadline)) || return 0
-        sleep 0.5
-    done
-    pty=$(grep -o 'redirected to /dev/pts/[0-9]*' "$qemu_log" | head -1 | cut -d' ' -f3)
-    [ -n "$pty" ] || { echo "no pty in $qemu_log" >"$results/console.txt"; touch "$results/console.done"; return 0; }
-    stty -F "$pty" raw -echo
-    exec 4<>"$pty"
-    cat <&4 >"$results/console.txt" &
-    local reader=$!
-    while IFS= read -r line; do
-        printf '%s\r' "$line" >&4
+    local pty deadline=$((SECONDS + timeout_s)) line wait
+    while kill -0 $qemu 2>/dev/null && ((SECONDS < deadline)); do
+        if [ ! -e "$results/console.ready" ]; then
+            sleep 0.5
+            continue
+        fi
+        rm -f "$results/console.ready"  # taken: one round per ready
+        pty=$(grep -o 'redirected to /dev/pts/[0-9]*' "$qemu_log" | head -1 | cut -d' ' -f3)
+        if [ -z "$pty" ]; then
+            echo "no pty in $qemu_log" >"$results/console.txt"
+            touch "$results/console.done"
+            continue
+        fi
+        wait=$(cat "$results/console.wait" 2>/dev/null || echo 60)
+        stty -F "$pty" raw -echo
+        exec 4<>"$pty"
+        cat <&4 >"$results/console.txt" &
+        local reader=$!
+        while IFS= read -r line; do
+            case $line in
+            '@flood '*)
+                local t0=$SECONDS
+                head -c "${line#@flood }" /dev/urandom >&4
+                echo "flood of ${line#@flood } bytes written in $((SECONDS - t0)) s" >"$results/console.flood"
+                ;;
+            *) printf '%s\r' "$line" >&4 ;;
+            esac
+            sleep 1
+        done <"$results/console.send"
+        local until=$((SECONDS + wait))
+        while ((SECONDS < until)); do
+            grep -aqE "$(cat "$results/console.expect")" "$results/console.txt" && break
+            sleep 0.5
+        done
         sleep 1
-    done <"$results/console.send"
-    for _ in $(seq 120); do
-        grep -aqE "$(cat "$results/console.expect")" "$results/console.txt" && break
-        sleep 0.5
+        kill $reader 2>/dev/null
+        wait $reader 2>/dev/null || true  # cat ends on SIGTERM (143)
+        exec 4>&-
+        touch "$results/console.done"
     done
-    sleep 1
-    kill $reader 2>/dev/null
-    exec 4>&-
-    touch "$results/console.done"
 }
 console_driver &
 driver=$!
@@ -115,6 +146,18 @@ wait $driver 2>/dev/null || true
 elapsed=$((SECONDS - start))
 
 grep -ao 'HIL \(PASS\|FAIL\|SKIP\|SCRIPT\) .*' "$qemu_log" | tr -d '\r' >"$results/summary.txt" || true
+# The snapshot from the DRM display path, read back through the results share: the display's
+# size and a camera picture (vimc's colour bars), not a blank frame or the "camera unavailable" screen.
+if grep -qx 'HIL PASS snapshot_drm' "$results/summary.txt"; then
+    checks="$checks snapshot_image"
+    if why=$("$here/png-check.py" "$results/snapshot-drm.png" $display_size 2>&1); then
+        echo "HIL PASS snapshot_image" >>"$results/summary.txt"
+        hil_say "snapshot: $why"
+    else
+        echo "HIL FAIL snapshot_image: $(echo $why)" >>"$results/summary.txt"
+    fi
+fi
+[ -f "$results/console.flood" ] && hil_say "$(cat "$results/console.flood")"
 cat "$results/summary.txt"
 fail=0
 ((status == 0)) || { hil_say "qemu exited with $status after ${elapsed}s (124 = timeout ${timeout_s}s)"; fail=1; }
