@@ -190,9 +190,10 @@ private:
     platform::ServiceNotifier notifier_;
     std::atomic<bool> stop_{false};
     bool restart_ = false;
-    std::int64_t lastFrameNs_ = 0;    // when the source last delivered a frame
-    std::int64_t lastPresentNs_ = 0;  // when the display last showed one
-    std::int64_t lostScreenNs_ = 0;   // when the "camera unavailable" screen was last drawn
+    std::int64_t lastFrameNs_ = 0;      // when the source last delivered a frame
+    std::int64_t frameIntervalNs_ = 0;  // running mean of the time between frames
+    std::int64_t lastPresentNs_ = 0;    // when the display last showed one
+    std::int64_t lostScreenNs_ = 0;     // when the "camera unavailable" screen was last drawn
     bool sourceEnded_ = false;
     bool sourceLost_ = false;
     bool frameBad_ = false;
