@@ -22,7 +22,10 @@ class FakeSystemd {
 public:
     explicit FakeSystemd(const char* watchdogUsec, long watchdogPid = ::getpid())
     {
-        path_ = testing_support::freshOutputDir("service_notifier") + "/notify";
+        // One socket per test process (ctest runs the tests as parallel processes), in /tmp so
+        // the path stays within sun_path's 108 bytes wherever the build tree is.
+        path_ = "/tmp/mirror-notify-test-" + std::to_string(::getpid());
+        ::unlink(path_.c_str());
         fd_ = ::socket(AF_UNIX, SOCK_DGRAM | SOCK_CLOEXEC | SOCK_NONBLOCK, 0);
         sockaddr_un address{};
         address.sun_family = AF_UNIX;
