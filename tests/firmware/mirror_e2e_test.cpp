@@ -46,7 +46,9 @@ RunResult runMirror(const std::string& args, const std::string& console = "")
     // Tests keep what the mirror learns in the build tree, never in /var/lib/mirror.
     std::string input = "/dev/null";
     if (!console.empty()) {
-        input = testing_support::binaryDir() + "/test-output/e2e_console.txt";
+        // One file per test: ctest runs the tests of this file as parallel processes.
+        input = testing_support::binaryDir() + "/test-output/e2e_console_" +
+                ::testing::UnitTest::GetInstance()->current_test_info()->name() + ".txt";
         std::ofstream(input) << console << '\n';
     }
     return runCommand(testing_support::binaryDir() + "/bin/mirror --set 'state.dir=\"" +
@@ -254,12 +256,11 @@ namespace {
 TEST(MirrorEndToEnd, MissingGpioChipAndSerialPortAreOneWarningEachAndTheMirrorRuns)
 {
     const std::string out = testing_support::freshOutputDir("e2e_missing_devices_out");
-    const RunResult r =
-        runMirror("--source synthetic --display headless:" + out +
-                      " --frames 10 --set 'source.rate=\"max\"' --set "
-                      "'buttons.chip=\"/nonexistent/gpiochip9\"' --set "
-                      "'console.serial=\"/dev/ttyNOSUCHPORT\"'",
-                  "selftest");
+    const RunResult r = runMirror("--source synthetic --display headless:" + out +
+                                      " --frames 10 --set 'source.rate=\"max\"' --set "
+                                      "'buttons.chip=\"/nonexistent/gpiochip9\"' --set "
+                                      "'console.serial=\"/dev/ttyNOSUCHPORT\"'",
+                                  "selftest");
     ASSERT_EQ(r.exitCode, 0) << r.output;
     EXPECT_NE(r.output.find("/nonexistent/gpiochip9"), std::string::npos) << r.output;
     EXPECT_NE(r.output.find("running without buttons"), std::string::npos) << r.output;
