@@ -43,7 +43,7 @@ int noteRanges(dl_phdr_info* info, std::size_t, void*)
     return 0;
 }
 
-bool isOurCode(const void* address)
+[[maybe_unused]] bool isOurCode(const void* address)
 {
     const auto a = reinterpret_cast<std::uintptr_t>(address);
     for (int i = 0; i < gOurCodeCount; ++i)
