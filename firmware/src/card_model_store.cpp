@@ -1,32 +1,16 @@
 #include "firmware/card_model_store.hpp"
 
-#include <fcntl.h>
-#include <toml++/toml.h>
-#include <unistd.h>
+#include "atomic_file.hpp"
 
-#include <cerrno>
+#include <toml++/toml.h>
+
 #include <cmath>
 #include <cstdio>
-#include <cstring>
 #include <filesystem>
 
 namespace firmware {
 
 namespace {
-
-bool writeAll(int fd, const char* data, std::size_t size) noexcept
-{
-    while (size > 0) {
-        const ssize_t n = ::write(fd, data, size);
-        if (n < 0 && errno == EINTR)
-            continue;
-        if (n <= 0)
-            return false;
-        data += n;
-        size -= static_cast<std::size_t>(n);
-    }
-    return true;
-}
 
 /// Three finite numbers in a sane chromaticity range, or nothing.
 bool readTriple(const toml::table& table, const char* key, float out[3], float lo, float hi)
@@ -95,28 +79,8 @@ bool CardModelStore::save(const vision::CardColorModel& model) noexcept
                       static_cast<double>(model.mean[0]), static_cast<double>(model.mean[1]),
                       static_cast<double>(model.mean[2]), static_cast<double>(model.sigma[0]),
                       static_cast<double>(model.sigma[1]), static_cast<double>(model.sigma[2]));
-    const int fd = ::open(tempPath_.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
-    if (fd < 0) {
-        std::snprintf(error_, sizeof error_, "%s: %s", tempPath_.c_str(), std::strerror(errno));
-        return false;
-    }
-    const bool written = writeAll(fd, text, static_cast<std::size_t>(n)) && ::fsync(fd) == 0;
-    const int writeErrno = errno;
-    ::close(fd);
-    if (!written || ::rename(tempPath_.c_str(), path_.c_str()) != 0) {
-        std::snprintf(error_, sizeof error_, "%s: %s", path_.c_str(),
-                      std::strerror(written ? errno : writeErrno));
-        ::unlink(tempPath_.c_str());
-        return false;
-    }
-    // The rename is durable only once the folder's entry is on disk too.
-    const int dirFd = ::open(dir_.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
-    if (dirFd >= 0) {
-        ::fsync(dirFd);
-        ::close(dirFd);
-    }
-    error_[0] = '\0';
-    return true;
+    return writeFileAtomically(dir_.c_str(), path_.c_str(), tempPath_.c_str(), text,
+                               static_cast<std::size_t>(n), error_, sizeof error_);
 }
 
 }  // namespace firmware
