@@ -162,6 +162,31 @@ check_serial_port() {
     grep -q 'pong 3' "$R/console.txt" || { echo "no reply on the serial port: $(head -c 200 "$R/console.txt")"; return 1; }
 }
 
+# --- the device code under AddressSanitizer ----------------------------------------------------
+
+# The platform tests of the AddressSanitizer + UBSan build (HIL_ASAN_BIN) on the real devices,
+# before the service owns them: libcamera capture and reopen, the camera unplugged mid-run (vimc
+# unbound; bound again here once that process ended), the DRM mode set, flips, a mode set refused while another process
+# is master and then retried. Any ASan/UBSan report or leak (LeakSanitizer at exit; Mesa's and
+# LLVM's process-lifetime caches suppressed, as on the host) fails the check.
+check_asan_devices() {
+    local t=$HIL_ASAN_BIN/devices_live_test out=$R/asan-devices.txt
+    [ -x "$t" ] || { echo "no $t"; return 1; }
+    ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
+        LSAN_OPTIONS="suppressions=$HIL_SOURCE_DIR/tests/sanitizers/lsan.supp:print_suppressions=0" \
+        LIBCAMERA_LOG_LEVELS="*:WARN" MIRROR_TEST_UNPLUG_LIBCAMERA=vimc:vimc.0 timeout 240 "$t" --gtest_filter='-*V4l2*' \
+        >"$out" 2>&1
+    local rc=$?
+    log "asan devices_live_test exit $rc"
+    # The camera back for the service (the process that lost it could not take it back).
+    [ -e /sys/bus/platform/drivers/vimc/vimc.0 ] || echo vimc.0 >/sys/bus/platform/drivers/vimc/bind ||
+        { echo "vimc.0 could not be bound again"; return 1; }
+    udevadm settle --timeout=30
+    ((rc == 0)) || { echo "exit $rc: $(grep -aE 'ERROR|Failure|FAILED' "$out" | head -3)"; return 1; }
+    ! grep -aq 'SKIPPED \]' "$out" || { echo "skipped: $(grep -a 'SKIPPED \]' "$out" | head -3)"; return 1; }
+    grep -aq 'PASSED .*5 tests' "$out" || { echo "not 5 tests passed: $(tail -2 "$out")"; return 1; }
+}
+
 # --- the firmware -----------------------------------------------------------------------------
 
 check_mirror_headless() {

@@ -11,7 +11,7 @@ here=$(cd "$(dirname "$0")" && pwd)
 
 [ $# -ge 1 ] || { echo "usage: $0 BUILD_DIR" >&2; exit 2; }
 build=$(cd "$1" && pwd)
-timeout_s=${HIL_TIMEOUT:-330}
+timeout_s=${HIL_TIMEOUT:-420}
 
 # The checks the guest runs, in order; each must print "HIL PASS name" (HIL_CHECKS="a b": only
 # those). Without packaging: the devices one by one (cam, gpiomon, a shell on ttyS1) and the
@@ -31,6 +31,15 @@ checks=${HIL_CHECKS:-"modules $device_checks mirror_headless"}
 package_checks="modules gpio_sim display_connected package_installed camera_listed
     console_selftest service_ready camera_replug fault_run_start button_press snapshot_drm
     serial_flood display_bad_mode display_fault gpio_absent serial_absent"
+# The AddressSanitizer build's device tests run in the machine too when that build exists
+# (scripts/dev test builds it before the tests; HIL_ASAN_BIN overrides where to look).
+source_dir=$(cd "$here/../.." && pwd)
+asan_bin=${HIL_ASAN_BIN:-$source_dir/build-asan/bin}
+if [ -x "$asan_bin/devices_live_test" ]; then
+    package_checks=${package_checks/display_connected /display_connected asan_devices }
+else
+    hil_say "no AddressSanitizer build ($asan_bin/devices_live_test): check asan_devices not run"
+fi
 # The mode of vkms the service is given (the snapshot's size).
 display_size="640 480"
 
@@ -62,7 +71,8 @@ mkdir -p "$results"
 cat >"$results/hil.env" <<ENV
 HIL_MODULES=$modules
 HIL_BIN=$build/bin
-HIL_SOURCE_DIR=$(cd "$here/../.." && pwd)
+HIL_SOURCE_DIR=$source_dir
+HIL_ASAN_BIN=$asan_bin
 HIL_CHECKS="$checks"
 HIL_PACKAGE=$package
 HIL_SERVICE_TYPE=${HIL_SERVICE_TYPE:-}
