@@ -1,6 +1,7 @@
 // RollByImageSymmetry: a synthetic mirror-symmetric face pattern rotated on screen by known
 // angles comes back within half a degree (with the right sign, also with the box off the face's
-// axis), no allocation per estimate, flat images give no confidence, bad input and bad options.
+// axis and near the ends of the angle range; by each cue alone within a degree), no allocation per
+// estimate, flat images give no confidence, bad input and bad options.
 #include "vision/roll_by_image_symmetry.hpp"
 
 #include "alloc_counter.hpp"
@@ -81,6 +82,39 @@ TEST(RollByImageSymmetry, BoxOffTheFaceAxis)
         const ImageBuffer img = rotatedFace(120, 120, faceCentre, degrees);
         const RollEstimate e = estimator.estimate(img.view(), {64.f, 63.f}, 56.f);
         EXPECT_NEAR(e.rollDegrees, degrees, 0.5) << "rotated by " << degrees;
+    }
+}
+
+TEST(RollByImageSymmetry, RollNearTheEndOfTheRangeIsKept)
+{
+    // The coarse scan only takes minima where the curve rises again on both sides; it reaches a
+    // step beyond each end of [-35, 35] so a roll just inside an end still qualifies.
+    RollByImageSymmetry estimator;
+    const Point2f centre{60.f, 60.f};
+    for (double degrees : {-34.6, 34.6}) {
+        const ImageBuffer img = rotatedFace(120, 120, centre, degrees);
+        EXPECT_NEAR(estimator.estimate(img.view(), centre, 56.f).rollDegrees, degrees, 0.5)
+            << "rotated by " << degrees;
+    }
+}
+
+TEST(RollByImageSymmetry, EachCueAloneFindsTheRoll)
+{
+    // Symmetry only (no row term), and the row term dominating: both recover the synthetic face,
+    // whose halves mirror each other and whose features run along its rows.
+    RollByImageSymmetryOptions symmetryOnly;
+    symmetryOnly.rowCoherenceWeight = 0.f;
+    RollByImageSymmetryOptions rowsFirst;
+    rowsFirst.rowCoherenceWeight = 4.f;
+    rowsFirst.rowCueBelowConfidence = 2.f;  // always (the synthetic face is clearly symmetric)
+    for (const auto& options : {symmetryOnly, rowsFirst}) {
+        RollByImageSymmetry estimator(options);
+        const Point2f centre{60.f, 60.f};
+        for (double degrees : {-18.0, 7.3, 26.0}) {
+            const ImageBuffer img = rotatedFace(120, 120, centre, degrees);
+            EXPECT_NEAR(estimator.estimate(img.view(), centre, 56.f).rollDegrees, degrees, 1.0)
+                << "rotated by " << degrees << ", row weight " << options.rowCoherenceWeight;
+        }
     }
 }
 
@@ -175,5 +209,10 @@ TEST(RollByImageSymmetry, InvalidOptionsThrowOneLine)
                  }),
                  std::invalid_argument);
     EXPECT_THROW(make([](auto& o) { o.gradientSaturation = -1.f; }), std::invalid_argument);
+    EXPECT_THROW(make([](auto& o) { o.rowCoherenceWeight = -0.5f; }), std::invalid_argument);
+    EXPECT_THROW(make([](auto& o) { o.rowCoherenceWeight = std::nanf(""); }),
+                 std::invalid_argument);
+    EXPECT_THROW(make([](auto& o) { o.rowCueBelowConfidence = std::nanf(""); }),
+                 std::invalid_argument);
     EXPECT_NO_THROW(make([](auto&) {}));
 }

@@ -169,6 +169,7 @@ int runRollEval(const RollEvalOptions& o, std::FILE* out, std::FILE* err)
         Errors truthNoise{"diag: eye-line truth vs axis truth", {}};
         Errors large{"diag: image symmetry, e-m >= 20 px", {}};
         Errors confident{"diag: image symmetry, conf >= 0.3", {}};
+        Errors turned{"diag: image symmetry, |yaw| >= 0.1", {}};
         std::vector<double> cornerCounts, centreOffsets, boxPerEyeMouth;
         int missed = 0, tooSmall = 0;
 
@@ -196,24 +197,26 @@ int runRollEval(const RollEvalOptions& o, std::FILE* out, std::FILE* err)
         std::fprintf(out,
                      "truth roll: orthogonal LS line through eye midpoint, nose, mouth centre, "
                      "from vertical, clockwise on screen positive (RollEstimate's sense)\n");
-        std::fprintf(out,
-                     "primary method: image symmetry (RollByImageSymmetry: the box x %.2f warped "
-                     "upright into a %d px patch per angle, %s mirror asymmetry (saturation "
-                     "%.1f) over a region +-%.2f wide, axis offset up to %.2f of the patch; "
-                     "angles [%.0f, %.0f] in %.1f deg steps, golden section to %.2f deg); the "
-                     "corner-symmetry rows are the dissertation's method (5.2)\n",
-                     static_cast<double>(io.boxScale), io.patchSize,
-                     io.feature == vision::SymmetryFeature::Gradient ? "gradient" : "intensity",
-                     static_cast<double>(io.gradientSaturation),
-                     static_cast<double>(io.regionHalfWidthFraction),
-                     static_cast<double>(io.maxAxisOffsetFraction),
-                     static_cast<double>(io.minDegrees), static_cast<double>(io.maxDegrees),
-                     static_cast<double>(io.coarseStepDegrees),
-                     static_cast<double>(io.refineToleranceDegrees));
+        std::fprintf(
+            out,
+            "primary method: image symmetry (RollByImageSymmetry: the box x %.2f warped "
+            "upright into a %d px patch per angle, %s mirror asymmetry (saturation "
+            "%.1f) over a region +-%.2f wide, axis offset up to %.2f of the patch; "
+            "angles [%.0f, %.0f] in %.1f deg steps, best interior minimum, golden section to "
+            "%.2f deg; plus %.2f x (1 - row coherence of the vertical derivatives)); the "
+            "corner-symmetry rows are the dissertation's method (5.2)\n",
+            static_cast<double>(io.boxScale), io.patchSize,
+            io.feature == vision::SymmetryFeature::Gradient ? "gradient" : "intensity",
+            static_cast<double>(io.gradientSaturation),
+            static_cast<double>(io.regionHalfWidthFraction),
+            static_cast<double>(io.maxAxisOffsetFraction), static_cast<double>(io.minDegrees),
+            static_cast<double>(io.maxDegrees), static_cast<double>(io.coarseStepDegrees),
+            static_cast<double>(io.refineToleranceDegrees),
+            static_cast<double>(io.rowCoherenceWeight));
         if (o.perFace)
-            std::fprintf(out, "%-28s %4s %5s %7s %7s %7s %5s %7s %7s %5s %6s\n", "image", "line",
-                         "d_px", "rot", "truth", "image", "conf", "corner", "linefit", "pts",
-                         "offset");
+            std::fprintf(out, "%-28s %4s %5s %7s %7s %7s %5s %7s %7s %5s %6s %6s %6s\n", "image",
+                         "line", "d_px", "rot", "truth", "image", "conf", "corner", "linefit",
+                         "pts", "offset", "yaw", "eye");
 
         std::mt19937 rng(o.seed);
         std::uniform_real_distribution<double> angle(-o.rotateDegrees, o.rotateDegrees);
@@ -308,18 +311,28 @@ int runRollEval(const RollEvalOptions& o, std::FILE* out, std::FILE* err)
             truthNoise.values.push_back(std::fabs(eyeRoll - truthRoll));
             if (f.eyeMouthDistance() >= 20.f)
                 large.values.push_back(error);
+            // Yaw proxy: the nose's sideways offset from the eye-midpoint-mouth line, per
+            // eye-mouth distance (turned heads have the nose off their midline).
+            const vision::Point2f em = f.eyeMidpoint();
+            const double ax = f.mouthCentre.x - em.x, ay = f.mouthCentre.y - em.y;
+            const double yaw = ((f.nose.x - em.x) * ay - (f.nose.y - em.y) * ax) /
+                               std::max(1e-6, ax * ax + ay * ay);
+            if (std::fabs(yaw) >= 0.1)
+                turned.values.push_back(error);
             cornerCounts.push_back(n);
             const double offset =
                 std::hypot(centre.x - faceCentre.x, centre.y - faceCentre.y) / size;
             centreOffsets.push_back(offset);
             boxPerEyeMouth.push_back(3.0 * size / side);  // the crop is 3 eye-mouth distances
             if (o.perFace)
-                std::fprintf(out, "%-28s %4d %5.1f %7.2f %7.2f %7.2f %5.2f %7.2f %7.2f %5d %6.3f\n",
-                             f.image.c_str(), f.line, static_cast<double>(f.eyeMouthDistance()),
-                             rotation, truthRoll, static_cast<double>(byImage.rollDegrees),
-                             static_cast<double>(byImage.confidence),
-                             static_cast<double>(ours.rollDegrees),
-                             static_cast<double>(line.rollDegrees), n, offset);
+                std::fprintf(
+                    out,
+                    "%-28s %4d %5.1f %7.2f %7.2f %7.2f %5.2f %7.2f %7.2f %5d %6.3f %6.3f "
+                    "%6.2f\n",
+                    f.image.c_str(), f.line, static_cast<double>(f.eyeMouthDistance()), rotation,
+                    truthRoll, static_cast<double>(byImage.rollDegrees),
+                    static_cast<double>(byImage.confidence), static_cast<double>(ours.rollDegrees),
+                    static_cast<double>(line.rollDegrees), n, offset, yaw, eyeRoll - truthRoll);
         }
 
         const auto meanOf = [](const std::vector<double>& v) {
@@ -338,7 +351,7 @@ int runRollEval(const RollEvalOptions& o, std::FILE* out, std::FILE* err)
         std::fprintf(out, "%-36s %6s %9s %8s %8s %8s\n", "method", "faces", "mean_deg", "p90_deg",
                      "within1", "within5");
         for (const Errors* e : {&image, &symmetry, &dissertation, &lineFit, &upright, &truthCentre,
-                                &eyeLine, &truthNoise, &large, &confident})
+                                &eyeLine, &truthNoise, &large, &confident, &turned})
             std::fprintf(out, "%-36s %6zu %9.2f %8.2f %8.3f %8.3f\n", e->name, e->values.size(),
                          e->mean(), e->percentile(0.9), e->within(1.0), e->within(5.0));
         std::fprintf(out, "method: image symmetry (RollByImageSymmetry)\n");
