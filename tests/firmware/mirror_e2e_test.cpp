@@ -3,18 +3,25 @@
 #include "firmware/exit_codes.hpp"
 #include "test_paths.hpp"
 
+#include <fcntl.h>
 #include <gtest/gtest.h>
+#include <poll.h>
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <array>
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
 #include <random>
 #include <string>
+#include <thread>
+#include <vector>
 
 namespace {
 
@@ -269,6 +276,112 @@ TEST(MirrorEndToEnd, MissingGpioChipAndSerialPortAreOneWarningEachAndTheMirrorRu
     EXPECT_NE(r.output.find("FAIL gpio"), std::string::npos) << r.output;
     EXPECT_NE(r.output.find("stopped (frame limit reached) after 10 frames"), std::string::npos)
         << r.output;
+}
+
+}  // namespace
+
+namespace {
+
+/// The terminal end of a pseudo-terminal whose other end is the mirror's "serial port".
+struct PtyTerminal {
+    int master = -1;
+    std::string device;
+    PtyTerminal()
+    {
+        master = ::posix_openpt(O_RDWR | O_NOCTTY);
+        if (master >= 0 && ::grantpt(master) == 0 && ::unlockpt(master) == 0)
+            device = ::ptsname(master);
+    }
+    ~PtyTerminal()
+    {
+        if (master >= 0)
+            ::close(master);
+    }
+    /// Writes all of `data`, reading (and keeping) what the mirror sends meanwhile so neither
+    /// side's buffer fills up.
+    void write(const char* data, std::size_t size, std::string& screen) const
+    {
+        for (std::size_t sent = 0; sent < size;) {
+            pollfd p{master, POLLIN | POLLOUT, 0};
+            if (::poll(&p, 1, 100) < 0)
+                return;
+            if (p.revents & POLLIN)
+                read(screen);
+            if (p.revents & POLLOUT) {
+                const ssize_t n =
+                    ::write(master, data + sent, std::min<std::size_t>(4096, size - sent));
+                if (n > 0)
+                    sent += static_cast<std::size_t>(n);
+            }
+        }
+    }
+    void read(std::string& screen) const
+    {
+        char buffer[4096];
+        const ssize_t n = ::read(master, buffer, sizeof buffer);
+        if (n > 0)
+            screen.append(buffer, static_cast<std::size_t>(n));
+    }
+    /// Reads until `text` shows up after `from` or `seconds` passed.
+    bool waitFor(std::string& screen, const std::string& text, std::size_t from, int seconds) const
+    {
+        for (int i = 0; i < seconds * 20; ++i) {
+            if (screen.find(text, from) != std::string::npos)
+                return true;
+            pollfd p{master, POLLIN, 0};
+            if (::poll(&p, 1, 50) > 0 && (p.revents & POLLIN))
+                read(screen);
+        }
+        return screen.find(text, from) != std::string::npos;
+    }
+};
+
+TEST(MirrorEndToEnd, AMegabyteOfNoiseOnTheSerialConsoleAndTheMirrorStillAnswers)
+{
+    // The whole mirror with its console on a serial port (a pty here; the hil test types on a
+    // real emulated UART): 1 MiB of random bytes, then the technician's `status` is answered
+    // and `quit` stops it cleanly. Under the sanitizer build this is the AddressSanitizer run.
+    PtyTerminal terminal;
+    ASSERT_FALSE(terminal.device.empty()) << std::strerror(errno);
+    const std::string out = testing_support::freshOutputDir("e2e_serial_flood_out");
+    RunResult result;
+    std::thread mirror([&] {
+        result = runMirror("--source synthetic --display headless:" + out +
+                           " --frames 100000 --set 'source.rate=\"max\"' --set source.width=160"
+                           " --set source.height=120 --set display.width=160 --set"
+                           " display.height=120 --set display.snapshot_every=0 --set"
+                           " console.stdin=false --set 'console.serial=\"" +
+                           terminal.device + "\"'");
+    });
+    std::string screen;
+    // The prompt first: the console is open before the noise starts.
+    const bool prompted = terminal.waitFor(screen, "> ", 0, 60);
+    constexpr std::size_t kFlood = 1 << 20;
+    std::vector<char> noise(kFlood);
+    std::mt19937 random(2006);
+    for (char& c : noise)
+        c = static_cast<char>(random() & 0xFF);
+    if (prompted)
+        terminal.write(noise.data(), noise.size(), screen);
+    const std::size_t afterFlood = screen.size();
+    const std::string commands = "\r\rstatus\r";
+    terminal.write(commands.data(), commands.size(), screen);
+    const bool answered = terminal.waitFor(screen, "source: synthetic", afterFlood, 60);
+    const std::string quit = "quit\r";
+    terminal.write(quit.data(), quit.size(), screen);
+    mirror.join();
+    EXPECT_TRUE(prompted) << result.output;
+    EXPECT_TRUE(answered) << screen.substr(afterFlood, 2000);
+    EXPECT_EQ(result.exitCode, 0) << result.output;
+    EXPECT_NE(result.output.find("stopped (stop requested)"), std::string::npos) << result.output;
+    // The noise went through the shell (rejected line by line), not around it.
+    std::size_t rejected = 0;
+    for (std::size_t at = screen.find("binary data ignored"); at != std::string::npos;
+         at = screen.find("binary data ignored", at + 1))
+        ++rejected;
+    EXPECT_GT(rejected, 0u);
+    std::printf("1 MiB of noise: %zu lines rejected as binary, %zu bytes back\n", rejected,
+                screen.size());
 }
 
 }  // namespace
