@@ -1,6 +1,7 @@
 // End to end through the real binary: frames replayed from files come out of the headless display
 // mirrored left-right; bad sources and displays fail fast with one clear line and their exit code.
 #include "firmware/exit_codes.hpp"
+#include "pseudo_terminal.hpp"
 #include "test_paths.hpp"
 
 #include <fcntl.h>
@@ -282,67 +283,13 @@ TEST(MirrorEndToEnd, MissingGpioChipAndSerialPortAreOneWarningEachAndTheMirrorRu
 
 namespace {
 
-/// The terminal end of a pseudo-terminal whose other end is the mirror's "serial port".
-struct PtyTerminal {
-    int master = -1;
-    std::string device;
-    PtyTerminal()
-    {
-        master = ::posix_openpt(O_RDWR | O_NOCTTY);
-        if (master >= 0 && ::grantpt(master) == 0 && ::unlockpt(master) == 0)
-            device = ::ptsname(master);
-    }
-    ~PtyTerminal()
-    {
-        if (master >= 0)
-            ::close(master);
-    }
-    /// Writes all of `data`, reading (and keeping) what the mirror sends meanwhile so neither
-    /// side's buffer fills up.
-    void write(const char* data, std::size_t size, std::string& screen) const
-    {
-        for (std::size_t sent = 0; sent < size;) {
-            pollfd p{master, POLLIN | POLLOUT, 0};
-            if (::poll(&p, 1, 100) < 0)
-                return;
-            if (p.revents & POLLIN)
-                read(screen);
-            if (p.revents & POLLOUT) {
-                const ssize_t n =
-                    ::write(master, data + sent, std::min<std::size_t>(4096, size - sent));
-                if (n > 0)
-                    sent += static_cast<std::size_t>(n);
-            }
-        }
-    }
-    void read(std::string& screen) const
-    {
-        char buffer[4096];
-        const ssize_t n = ::read(master, buffer, sizeof buffer);
-        if (n > 0)
-            screen.append(buffer, static_cast<std::size_t>(n));
-    }
-    /// Reads until `text` shows up after `from` or `seconds` passed.
-    bool waitFor(std::string& screen, const std::string& text, std::size_t from, int seconds) const
-    {
-        for (int i = 0; i < seconds * 20; ++i) {
-            if (screen.find(text, from) != std::string::npos)
-                return true;
-            pollfd p{master, POLLIN, 0};
-            if (::poll(&p, 1, 50) > 0 && (p.revents & POLLIN))
-                read(screen);
-        }
-        return screen.find(text, from) != std::string::npos;
-    }
-};
-
 TEST(MirrorEndToEnd, AMegabyteOfNoiseOnTheSerialConsoleAndTheMirrorStillAnswers)
 {
     // The whole mirror with its console on a serial port (a pty here; the hil test types on a
     // real emulated UART): 1 MiB of random bytes, then the technician's `status` is answered
     // and `quit` stops it cleanly. Under the sanitizer build this is the AddressSanitizer run.
-    PtyTerminal terminal;
-    ASSERT_FALSE(terminal.device.empty()) << std::strerror(errno);
+    testing_support::PseudoTerminal terminal;
+    ASSERT_FALSE(terminal.slave.empty());
     const std::string out = testing_support::freshOutputDir("e2e_serial_flood_out");
     RunResult result;
     std::thread mirror([&] {
@@ -351,7 +298,7 @@ TEST(MirrorEndToEnd, AMegabyteOfNoiseOnTheSerialConsoleAndTheMirrorStillAnswers)
                            " --set source.height=120 --set display.width=160 --set"
                            " display.height=120 --set display.snapshot_every=0 --set"
                            " console.stdin=false --set 'console.serial=\"" +
-                           terminal.device + "\"'");
+                           terminal.slave + "\"'");
     });
     std::string screen;
     // The prompt first: the console is open before the noise starts.
@@ -362,13 +309,13 @@ TEST(MirrorEndToEnd, AMegabyteOfNoiseOnTheSerialConsoleAndTheMirrorStillAnswers)
     for (char& c : noise)
         c = static_cast<char>(random() & 0xFF);
     if (prompted)
-        terminal.write(noise.data(), noise.size(), screen);
+        terminal.typeAll(std::string_view(noise.data(), noise.size()), screen);
     const std::size_t afterFlood = screen.size();
     const std::string commands = "\r\rstatus\r";
-    terminal.write(commands.data(), commands.size(), screen);
+    terminal.typeAll(commands, screen);
     const bool answered = terminal.waitFor(screen, "source: synthetic", afterFlood, 60);
     const std::string quit = "quit\r";
-    terminal.write(quit.data(), quit.size(), screen);
+    terminal.typeAll(quit, screen);
     mirror.join();
     EXPECT_TRUE(prompted) << result.output;
     EXPECT_TRUE(answered) << screen.substr(afterFlood, 2000);

@@ -3,6 +3,7 @@
 #include "alloc_counter.hpp"
 #include "firmware/command_shell.hpp"
 #include "platform/serial_console.hpp"
+#include "pseudo_terminal.hpp"
 
 #include <fcntl.h>
 #include <gtest/gtest.h>
@@ -25,42 +26,11 @@ using platform::SerialConsole;
 
 namespace {
 
-struct Terminal {
-    int master = -1;
-    std::string device;
-    Terminal()
-    {
-        master = ::posix_openpt(O_RDWR | O_NOCTTY);
-        EXPECT_GE(master, 0) << std::strerror(errno);
-        ::grantpt(master);
-        ::unlockpt(master);
-        device = ::ptsname(master);
-    }
-    ~Terminal() { ::close(master); }
-    void type(std::string_view text) const
-    {
-        ASSERT_EQ(::write(master, text.data(), text.size()), static_cast<ssize_t>(text.size()));
-    }
-    std::string screen() const
-    {
-        std::string out;
-        pollfd p{master, POLLIN, 0};
-        while (::poll(&p, 1, 50) > 0 && (p.revents & POLLIN)) {
-            char buffer[4096];
-            const ssize_t n = ::read(master, buffer, sizeof buffer);
-            if (n <= 0)
-                break;
-            out.append(buffer, static_cast<std::size_t>(n));
-        }
-        return out;
-    }
-};
-
 /// The shell as the firmware sets it up for a serial port: prompt, CR LF line ends.
 struct SerialShell {
-    Terminal terminal;
+    testing_support::PseudoTerminal terminal;
     // The firmware gives the console the shell's line limit, so echo stops where the shell cuts.
-    SerialConsole console{terminal.device, {.maxLineLength = 32}};
+    SerialConsole console{terminal.slave, {.maxLineLength = 32}};
     CommandShell shell{
         ShellOptions{.maxLineLength = 32, .readBudget = 256, .prompt = true, .crlf = true}};
     SerialShell()
@@ -84,24 +54,24 @@ TEST(SerialShell, EchoesTheCommandAndAnswersWithCrLf)
 {
     SerialShell s;
     s.frames(1);
-    EXPECT_EQ(s.terminal.screen(), "> ");
+    EXPECT_EQ(s.terminal.screen(50), "> ");
     s.terminal.type("verz\x7fsion\r");
     s.frames(20);
-    EXPECT_EQ(s.terminal.screen(), "verz\b \bsion\r\nmirror 0.1.0\r\n> ");
+    EXPECT_EQ(s.terminal.screen(50), "verz\b \bsion\r\nmirror 0.1.0\r\n> ");
 }
 
 TEST(SerialShell, ALongLineIsDroppedWithOneNotice)
 {
     SerialShell s;
     s.frames(1);
-    s.terminal.screen();
+    s.terminal.screen(50);
     s.terminal.type(std::string(100, 'a') + "\r");
     s.frames(20);
-    EXPECT_EQ(s.terminal.screen(),
+    EXPECT_EQ(s.terminal.screen(50),
               std::string(32, 'a') + "\r\nerror: line too long (max 32 characters)\r\n> ");
     s.terminal.type("version\r");
     s.frames(20);
-    EXPECT_EQ(s.terminal.screen(), "version\r\nmirror 0.1.0\r\n> ");
+    EXPECT_EQ(s.terminal.screen(50), "version\r\nmirror 0.1.0\r\n> ");
 }
 
 TEST(SerialShell, AFloodOfRandomBytesIsReadInBoundedPiecesWithoutAllocating)
@@ -148,7 +118,7 @@ TEST(SerialShell, AFloodOfRandomBytesIsReadInBoundedPiecesWithoutAllocating)
     std::string seen;
     for (int i = 0; i < 200 && seen.find("mirror 0.1.0\r\n> ") == std::string::npos; ++i) {
         s.frames(1);
-        seen += s.terminal.screen();
+        seen += s.terminal.screen(50);
     }
     EXPECT_NE(seen.find("mirror 0.1.0\r\n> "), std::string::npos);
 }

@@ -1,5 +1,8 @@
 #include "platform/serial_console.hpp"
 
+#include "alloc_counter.hpp"
+#include "pseudo_terminal.hpp"
+
 #include <fcntl.h>
 #include <gtest/gtest.h>
 #include <poll.h>
@@ -7,7 +10,6 @@
 #include <termios.h>
 #include <unistd.h>
 
-#include <alloc_counter.hpp>
 #include <atomic>
 #include <cerrno>
 #include <cstring>
@@ -22,45 +24,7 @@ using platform::SerialConsoleOptions;
 
 namespace {
 
-/// A pseudo-terminal: the console opens the slave by path, the test plays the terminal on the
-/// master.
-struct Pty {
-    int master = -1;
-    std::string slave;
-    Pty()
-    {
-        master = ::posix_openpt(O_RDWR | O_NOCTTY);
-        EXPECT_GE(master, 0) << std::strerror(errno);
-        EXPECT_EQ(::grantpt(master), 0);
-        EXPECT_EQ(::unlockpt(master), 0);
-        slave = ::ptsname(master);
-    }
-    ~Pty()
-    {
-        if (master >= 0)
-            ::close(master);
-    }
-    void type(std::string_view bytes) const
-    {
-        ASSERT_EQ(::write(master, bytes.data(), bytes.size()), static_cast<ssize_t>(bytes.size()));
-    }
-    /// What the console sent to the terminal, waiting up to 1 s for the first byte.
-    std::string screen() const
-    {
-        std::string out;
-        pollfd p{master, POLLIN, 0};
-        int timeoutMs = 1000;
-        while (::poll(&p, 1, timeoutMs) > 0 && (p.revents & POLLIN)) {
-            char buffer[4096];
-            const ssize_t n = ::read(master, buffer, sizeof buffer);
-            if (n <= 0)
-                break;
-            out.append(buffer, static_cast<std::size_t>(n));
-            timeoutMs = 50;
-        }
-        return out;
-    }
-};
+using Pty = testing_support::PseudoTerminal;
 
 /// Reads until `expected` bytes came or nothing more arrives for a while.
 std::string readAll(SerialConsole& console, std::size_t expected)
