@@ -152,6 +152,8 @@ void FrameLoop::addFaceStages(vision::Size size)
     o.graceFrames = c.graceFrames;
     o.maxFaces = c.maxFaces;
     o.detectionWindowBudget = c.detectionBudget;
+    o.tiltScanDegrees = static_cast<float>(c.tiltScanDeg);
+    o.tiltWindowBudget = c.tiltWindowBudget;
     const double fps = config_.source.fps > 0 ? config_.source.fps : 30.0;
     o.staticDropFrames = static_cast<int>(c.staticDropS * fps + 0.5);
     // The cascade is read once here; a missing or broken file stops start-up with one line.

@@ -1,5 +1,6 @@
 // warpUpright: an exact copy at roll 0, a pattern rotated on screen comes back upright with its
-// roll (and not with the opposite one), border replication, bad arguments.
+// roll (and not with the opposite one), border replication, bad arguments; warpRotated (regions
+// of any shape, units per axis) and its agreement with warpUpright.
 #include "vision/upright_patch.hpp"
 
 #include "alloc_counter.hpp"
@@ -146,6 +147,73 @@ TEST(UprightPatch, RejectsBadArgumentsWithoutTouchingThePatch)
     EXPECT_FALSE(warpUpright(img.view(), {5.f, 5.f}, NAN, 8.f, patch.view()));
     EXPECT_FALSE(warpUpright(img.view(), {1e9f, 5.f}, 0.f, 8.f, patch.view()));
     EXPECT_FALSE(warpUpright(img.view(), {5.f, 5.f}, 0.f, 8.f, rgb.view()));
+    EXPECT_EQ(patch.view().row(0)[0], 77);
+}
+
+TEST(UprightPatch, WarpRotatedOfUnitOneIntoAWideRegionIsACopy)
+{
+    // The tracker's tilted scans: a region of any shape, one patch pixel per image pixel.
+    ImageBuffer img(64, 48, PixelFormat::Gray8);
+    std::mt19937 rng(5);
+    for (int y = 0; y < 48; ++y) {
+        for (int x = 0; x < 64; ++x)
+            img.view().row(y)[x] = static_cast<std::uint8_t>(rng() & 255);
+    }
+    ImageBuffer patch(40, 20, PixelFormat::Gray8);
+    ASSERT_TRUE(warpRotated(img.view(), {30.f, 25.f}, 0.f, 1.f, 1.f, patch.view()));
+    for (int v = 0; v < 20; ++v) {
+        for (int u = 0; u < 40; ++u)
+            ASSERT_EQ(patch.view().row(v)[u], img.view().row(15 + v)[10 + u]) << u << "," << v;
+    }
+}
+
+TEST(UprightPatch, WarpUprightIsWarpRotatedWithTheSideOverThePatch)
+{
+    const Point2f centre{80.3f, 61.7f};
+    const ImageBuffer scene = rotatedScene(160, 120, centre, 22.0);
+    ImageBuffer a(36, 36, PixelFormat::Gray8);
+    ImageBuffer b(36, 36, PixelFormat::Gray8);
+    ASSERT_TRUE(warpUpright(scene.view(), centre, 22.f, 54.f, a.view()));
+    ASSERT_TRUE(warpRotated(scene.view(), centre, 22.f, 1.5f, 1.5f, b.view()));
+    for (int v = 0; v < 36; ++v) {
+        for (int u = 0; u < 36; ++u)
+            ASSERT_EQ(a.view().row(v)[u], b.view().row(v)[u]) << u << "," << v;
+    }
+}
+
+TEST(UprightPatch, WarpRotatedStraightensAWideRegionAndScalesEachAxis)
+{
+    const Point2f centre{80.f, 60.f};
+    for (const double roll : {-25.0, 25.0}) {
+        const ImageBuffer scene = rotatedScene(160, 120, centre, roll);
+        ImageBuffer wide(60, 30, PixelFormat::Gray8);
+        ASSERT_TRUE(
+            warpRotated(scene.view(), centre, static_cast<float>(roll), 1.f, 1.f, wide.view()));
+        EXPECT_LT(meanErrorToUpright(wide), 1.5) << roll;
+    }
+    // Units per axis: a horizontal ramp sampled every 2 pixels across, every pixel down.
+    ImageBuffer ramp(64, 48, PixelFormat::Gray8);
+    for (int y = 0; y < 48; ++y) {
+        for (int x = 0; x < 64; ++x)
+            ramp.view().row(y)[x] = static_cast<std::uint8_t>(3 * x + y);
+    }
+    ImageBuffer patch(16, 16, PixelFormat::Gray8);
+    ASSERT_TRUE(warpRotated(ramp.view(), {32.f, 24.f}, 0.f, 2.f, 1.f, patch.view()));
+    // Patch pixel (u, v) is at source (16.5 + 2u, 16 + v) in pixel-centre coordinates.
+    for (int v = 0; v < 16; ++v) {
+        for (int u = 0; u < 16; ++u)
+            EXPECT_NEAR(patch.view().row(v)[u], 3 * (16.5 + 2 * u) + 16 + v, 0.51) << u << v;
+    }
+}
+
+TEST(UprightPatch, WarpRotatedRejectsBadUnits)
+{
+    ImageBuffer img(20, 10, PixelFormat::Gray8);
+    ImageBuffer patch(8, 8, PixelFormat::Gray8);
+    patch.view().row(0)[0] = 77;
+    EXPECT_FALSE(warpRotated(img.view(), {5.f, 5.f}, 0.f, 0.f, 1.f, patch.view()));
+    EXPECT_FALSE(warpRotated(img.view(), {5.f, 5.f}, 0.f, 1.f, -1.f, patch.view()));
+    EXPECT_FALSE(warpRotated(img.view(), {5.f, 5.f}, 0.f, INFINITY, 1.f, patch.view()));
     EXPECT_EQ(patch.view().row(0)[0], 77);
 }
 

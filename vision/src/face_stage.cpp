@@ -24,7 +24,7 @@ FaceStage::FaceStage(const MotionStage& motion, const HaarCascade& cascade,
 void FaceStage::process(FrameState& state) noexcept
 {
     if (state.valid && motion_.ok())
-        tracker_.process(motion_.gray(), motion_.mask());
+        tracker_.process(motion_.gray(), motion_.mask(), &motion_.maskIntegral());
     // Working image -> frame coordinates: the motion stage's grey image is the frame shrunk by
     // an integer factor (pixel centres: x_frame = (x + 0.5) * k - 0.5).
     const float k = static_cast<float>(motion_.downscale());

@@ -11,6 +11,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <limits>
 #include <stdexcept>
 #include <vector>
 
@@ -30,6 +31,34 @@ constexpr float kVerifyContext = 1.6f;
 constexpr float kStillShift = 0.25f;
 /// Image-symmetry roll estimates less sure than this are not used (RollEstimate::confidence).
 constexpr float kMinImageRollConfidence = 0.15f;
+/// Tilted scans: the motion mask of the scanned region is resampled to this square (the
+/// detector maps a mask of any resolution proportionally onto the image).
+constexpr int kTiltMaskSide = 64;
+/// Tilted scans look for moving regions in cells of this many pixels.
+constexpr int kTiltCell = 8;
+/// A tracked face's motion (its trail included) covers its box enlarged by this factor.
+constexpr float kTrackMotionReach = 1.5f;
+/// Tilted scans cost as much as upright ones per window and there are two angles: only
+/// windows (and cells) this full of motion, as a moving face's box is (about 0.7 on average).
+constexpr float kTiltMinMaskFraction = 0.4f;
+constexpr float kDegToRad = 1.f / kRadToDeg;
+/// Verification retries this far either side of the tracked roll (the upright cascade finds
+/// faces within about +-15 degrees).
+constexpr float kVerifyRollStep = 12.f;
+/// The first frames of a track settle its box (detections move it a few pixels).
+constexpr int kSettleFrames = 5;
+/// Fraction of a young track's corners that must follow its motion fit for the motion to count.
+constexpr float kCoherentFraction = 0.85f;
+
+/// The rotated image of a w x h image, turned by `degrees`, fits in this box (plus a margin).
+Size rotatedCanvas(Size s, float degrees) noexcept
+{
+    const float c = std::fabs(std::cos(degrees * kDegToRad));
+    const float n = std::fabs(std::sin(degrees * kDegToRad));
+    const float w = static_cast<float>(s.width) * c + static_cast<float>(s.height) * n;
+    const float h = static_cast<float>(s.width) * n + static_cast<float>(s.height) * c;
+    return {static_cast<int>(std::ceil(w)) + 16, static_cast<int>(std::ceil(h)) + 16};
+}
 
 struct Track {
     TrackedFace face;
@@ -47,6 +76,11 @@ struct Track {
     Point2f lastCentre{};
     int verifiedSinceAnchor = 0;
     bool detectedThisFrame = false;
+    /// Started by a tilted scan's hit: until shown, only the motion of its corners (`path`)
+    /// shows it moves, not the motion mask. The turned regions offer the cascade more windows,
+    /// hence more chance hits on still faces, and a changing light can fill a still face's box
+    /// with foreground.
+    bool tiltFound = false;
 };
 
 struct RecentArea {
@@ -96,6 +130,13 @@ FaceDetectorOptions scanOptions(const FaceTrackerOptions& o)
     return d;
 }
 
+FaceDetectorOptions tiltOptions(const FaceTrackerOptions& o)
+{
+    FaceDetectorOptions d = o.detector;
+    d.maxFrameSize = rotatedCanvas(o.imageSize, o.tiltScanDegrees);
+    return d;
+}
+
 FaceDetectorOptions verifyOptions(const FaceTrackerOptions& o, Size window)
 {
     // The face fills about 1 / kVerifyContext of the patch; scan from the smallest window up to
@@ -127,6 +168,10 @@ void validate(const FaceTrackerOptions& o)
         throw std::runtime_error("FaceTracker: verifyPatchSize must be 32..256");
     if (!(o.minMaskFraction >= 0.f && o.minMaskFraction <= 1.f))
         throw std::runtime_error("FaceTracker: minMaskFraction must be 0..1");
+    if (!(o.tiltScanDegrees >= 0.f && o.tiltScanDegrees <= 60.f))
+        throw std::runtime_error("FaceTracker: tiltScanDegrees must be 0..60");
+    if (o.tiltWindowBudget < 0)
+        throw std::runtime_error("FaceTracker: tiltWindowBudget must be >= 0");
 }
 
 }  // namespace
@@ -149,23 +194,39 @@ struct FaceTracker::Impl {
     {
         if (o.rollByImageSymmetry)
             imageRoll = std::make_unique<RollByImageSymmetry>();
+        if (options.tiltScanDegrees > 0.f) {
+            const FaceDetectorOptions t = tiltOptions(o);
+            tiltScan = std::make_unique<FaceDetector>(cascade, t);
+            tiltGray = ImageBuffer(t.maxFrameSize.width, t.maxFrameSize.height, PixelFormat::Gray8);
+            tiltMask = ImageBuffer(kTiltMaskSide, kTiltMaskSide, PixelFormat::Gray8);
+            tiltMaskIntegral = IntegralImage({kTiltMaskSide, kTiltMaskSide});
+        }
         options.detector.maxFrameSize = o.imageSize;
         options.fit.kind = fitKind(o.mode);
         tracks.resize(static_cast<std::size_t>(o.maxFaces));
         outFaces.resize(static_cast<std::size_t>(o.maxFaces));
-        outDetections.resize(static_cast<std::size_t>(std::max(1, o.detector.maxFaces)));
+        const auto capacity = static_cast<std::size_t>(std::max(1, o.detector.maxFaces));
+        uprightHits.resize(capacity);
+        // Both angles may complete in one frame.
+        tiltHits.resize(options.tiltScanDegrees > 0.f ? 2 * capacity : 0);
+        tiltHitRolls.resize(tiltHits.size());
+        outDetections.resize(uprightHits.size() + tiltHits.size());
         excluded.resize(static_cast<std::size_t>(o.maxFaces));
         std::memset(scanMask.view().data, 0, scanMask.bytes());
         scanMaskIntegral.compute(scanMask.view());
     }
 
-    bool process(const ConstImageView& gray, const ConstImageView& mask) noexcept;
+    bool process(const ConstImageView& gray, const ConstImageView& mask,
+                 const IntegralImage* maskIntegral) noexcept;
     void trackPoints(Track& t) noexcept;
     void findCorners(Track& t, bool replenish) noexcept;
-    void startTrack(Rect box) noexcept;
-    float initialRoll(const Track& t) noexcept;
+    void startTrack(Rect box, float rollHint) noexcept;
+    float initialRoll(const Track& t, float rollHint) noexcept;
+    bool chooseTiltRegion() noexcept;
+    long tiltScanStep(long budget) noexcept;
     void correctRoll(Track& t) noexcept;
     bool verifyTrack(Track& t) noexcept;
+    bool verifyAt(Track& t, float roll) noexcept;
     void prepareScanMask(const ConstImageView& mask) noexcept;
     float motionFraction(Rect box) const noexcept;
     void drop(int index) noexcept;
@@ -183,6 +244,7 @@ struct FaceTracker::Impl {
     ImageBuffer scanMask;
     IntegralImage scanMaskIntegral;
     IntegralImage motionIntegral;
+    const IntegralImage* motion = nullptr;  ///< this frame's mask integral (ours or the caller's)
     bool haveMotion = false;
     ImageBuffer patch;
     std::unique_ptr<RollByImageSymmetry> imageRoll;  ///< null: corner symmetry only
@@ -195,6 +257,25 @@ struct FaceTracker::Impl {
     std::vector<TrackedFace> outFaces;
     std::vector<Rect> outDetections;
     int detectionCount = 0;
+    std::vector<Rect> uprightHits;  ///< the last completed upright scan's faces
+    int uprightCount = 0;
+
+    // Tilted scans of the moving regions no track covers (null / empty when off).
+    std::unique_ptr<FaceDetector> tiltScan;
+    ImageBuffer tiltGray;  ///< the region turned upright at the scan's angle (top-left part)
+    ImageBuffer tiltMask;  ///< the region's scan mask, resampled to kTiltMaskSide squared
+    IntegralImage tiltMaskIntegral;
+    bool tiltActive = false;   ///< a tilted scan is in progress over tiltCentre / tiltSize
+    Point2f tiltCentre{};      ///< image point at the region's centre
+    Size tiltSize{};           ///< region in the turned image (pixels as the image's)
+    float tiltAngle = 0.f;     ///< this scan's angle
+    float nextTiltSign = 1.f;  ///< the next scan turns by this sign times tiltScanDegrees
+    std::array<Rect, kMaxTracks> tiltExcluded{};
+    std::vector<Rect> tiltHits;       ///< the last completed tilted scan's faces (image boxes)
+    std::vector<float> tiltHitRolls;  ///< the angle of the scan that found each
+    int tiltCount = 0;
+    bool tiltDone = false;  ///< a tilted scan completed this frame
+
     std::vector<Rect> excluded;
     bool scanDone = false;
     long windows = 0;
@@ -220,7 +301,7 @@ float FaceTracker::Impl::motionFraction(Rect box) const noexcept
     const Rect r = clip(inner, options.imageSize);
     if (r.width <= 0 || r.height <= 0)
         return 0.f;
-    const std::uint32_t s = motionIntegral.sum(r.x, r.y, r.x + r.width, r.y + r.height);
+    const std::uint32_t s = motion->sum(r.x, r.y, r.x + r.width, r.y + r.height);
     return static_cast<float>(s) /
            (255.f * static_cast<float>(r.width) * static_cast<float>(r.height));
 }
@@ -301,7 +382,10 @@ void FaceTracker::Impl::trackPoints(Track& t) noexcept
     }
     const Point2f moved = model.apply(t.face.centre);
     const float shift = std::hypot(moved.x - t.face.centre.x, moved.y - t.face.centre.y);
-    if (shift > kStillShift)
+    // A young track's box may hold some background or a passing head, whose motion the fit
+    // can follow: its shifts count only when nearly all of its corners agree with them.
+    const bool coherent = t.face.age >= kSettleFrames || survived >= kCoherentFraction;
+    if (shift > kStillShift && coherent)
         t.path += shift;
     t.face.centre = moved;
     if (options.mode != FaceTrackingMode::Translation) {
@@ -325,7 +409,27 @@ bool FaceTracker::Impl::verifyTrack(Track& t) noexcept
 {
     // Fig. 89: a track with no detection is verified by warping its face upright by the tracked
     // roll into a small patch and running first-hit detection on it.
-    const float roll = options.mode == FaceTrackingMode::Translation ? 0.f : t.face.rollDegrees;
+    if (options.mode == FaceTrackingMode::Translation)
+        return verifyAt(t, 0.f);
+    if (verifyAt(t, t.face.rollDegrees))
+        return true;
+    // The tracked roll drifts (corners on hair and outline): a shown face the cascade no longer
+    // finds at it is tried once either side, within the cascade's reach, and the roll moves
+    // towards where it was found. Not a Tentative one: those get no grace (a still photo that
+    // lingers as a track would in time be confirmed by the light changing on it).
+    if (t.face.state == FaceState::Tentative)
+        return false;
+    for (const float d : {-kVerifyRollStep, kVerifyRollStep}) {
+        if (verifyAt(t, t.face.rollDegrees + d)) {
+            t.face.rollDegrees += 0.5f * d;
+            return true;
+        }
+    }
+    return false;
+}
+
+bool FaceTracker::Impl::verifyAt(Track& t, float roll) noexcept
+{
     const float side = t.face.size * kVerifyContext;
     if (!warpUpright(grays[current].view(), t.face.centre, roll, side, patch.view()))
         return false;
@@ -377,16 +481,20 @@ bool FaceTracker::Impl::verifyTrack(Track& t) noexcept
     return true;
 }
 
-float FaceTracker::Impl::initialRoll(const Track& t) noexcept
+float FaceTracker::Impl::initialRoll(const Track& t, float rollHint) noexcept
 {
     // Beyond 5.2: the dense symmetry of the face image, which holds on small faces whose corner
     // sets are not symmetric; the corners' point symmetry (5.2) when it has no answer.
     if (imageRoll) {
         const RollEstimate r =
             imageRoll->estimate(grays[current].view(), t.face.centre, t.face.size);
-        if (r.confidence >= kMinImageRollConfidence)
+        if (r.confidence >= kMinImageRollConfidence &&
+            (rollHint == 0.f || std::fabs(r.rollDegrees - rollHint) <= 20.f))
             return r.rollDegrees;
     }
+    // A tilted scan's hit: the face is within the cascade's reach of the scan's angle.
+    if (rollHint != 0.f)
+        return rollHint;
     const int n = std::min(t.pointCount, kMaxPoints);
     for (int i = 0; i < n; ++i)
         rollPoints[static_cast<std::size_t>(i)] = t.points[static_cast<std::size_t>(i)];
@@ -410,7 +518,7 @@ void FaceTracker::Impl::correctRoll(Track& t) noexcept
     t.face.rollDegrees += 0.5f * (r.rollDegrees - t.face.rollDegrees);
 }
 
-void FaceTracker::Impl::startTrack(Rect box) noexcept
+void FaceTracker::Impl::startTrack(Rect box, float rollHint) noexcept
 {
     if (trackCount >= options.maxFaces)
         return;
@@ -426,7 +534,9 @@ void FaceTracker::Impl::startTrack(Rect box) noexcept
     t.face.state = options.confirmFrames <= 1 ? FaceState::Confirmed : FaceState::Tentative;
     t.face.confidence = 1.f / static_cast<float>(options.confirmFrames);
     // A face found still is not shown until it moves; it is dropped if it never does.
-    t.lastMotionFrame = motionFraction(box) >= options.minFaceMotionFraction
+    // A tilted scan's hit must show motion of its own (see Track::tiltFound).
+    t.tiltFound = rollHint != 0.f;
+    t.lastMotionFrame = !t.tiltFound && motionFraction(box) >= options.minFaceMotionFraction
                             ? frameIndex
                             : frameIndex - options.confirmMotionFrames - 1;
     if (t.face.state == FaceState::Confirmed && t.lastMotionFrame != frameIndex)
@@ -436,7 +546,7 @@ void FaceTracker::Impl::startTrack(Rect box) noexcept
         findCorners(t, false);
     if (options.initialRollBySymmetry && (options.mode == FaceTrackingMode::Similarity ||
                                           options.mode == FaceTrackingMode::Affine)) {
-        t.face.rollDegrees = initialRoll(t);
+        t.face.rollDegrees = initialRoll(t, rollHint);
     }
     ++trackCount;
 }
@@ -458,7 +568,134 @@ void FaceTracker::Impl::drop(int index) noexcept
     --trackCount;
 }
 
-bool FaceTracker::Impl::process(const ConstImageView& gray, const ConstImageView& mask) noexcept
+bool FaceTracker::Impl::chooseTiltRegion() noexcept
+{
+    // The bounding box of the cells with motion (the scan mask's fraction) whose centre lies
+    // outside every tracked face's reach: where an untracked face may be.
+    const Size s = options.imageSize;
+    int x0 = s.width, y0 = s.height, x1 = 0, y1 = 0;
+    for (int cy = 0; cy < s.height; cy += kTiltCell) {
+        const int cy1 = std::min(cy + kTiltCell, s.height);
+        for (int cx = 0; cx < s.width; cx += kTiltCell) {
+            const int cx1 = std::min(cx + kTiltCell, s.width);
+            const std::uint32_t on = scanMaskIntegral.sum(cx, cy, cx1, cy1);
+            const float area = static_cast<float>((cx1 - cx) * (cy1 - cy));
+            if (static_cast<float>(on) < 255.f * kTiltMinMaskFraction * area)
+                continue;
+            const float mx = 0.5f * static_cast<float>(cx + cx1);
+            const float my = 0.5f * static_cast<float>(cy + cy1);
+            bool tracked = false;
+            for (int i = 0; i < trackCount && !tracked; ++i) {
+                const TrackedFace& f = tracks[static_cast<std::size_t>(i)].face;
+                const float reach = 0.5f * kTrackMotionReach * f.size;
+                tracked = std::fabs(mx - f.centre.x) < reach && std::fabs(my - f.centre.y) < reach;
+            }
+            if (tracked)
+                continue;
+            x0 = std::min(x0, cx);
+            y0 = std::min(y0, cy);
+            x1 = std::max(x1, cx1);
+            y1 = std::max(y1, cy1);
+        }
+    }
+    const int window = std::max(scan.windowSize().width, scan.windowSize().height);
+    if (x1 - x0 < window / 2 || y1 - y0 < window / 2)
+        return false;  // nothing moving untracked of a face's size
+    // Margin: the detector's box reaches beyond the moving pixels of the face.
+    const float margin = 4.f + 0.15f * static_cast<float>(std::max(x1 - x0, y1 - y0));
+    const float bw = static_cast<float>(x1 - x0) + 2.f * margin;
+    const float bh = static_cast<float>(y1 - y0) + 2.f * margin;
+    tiltAngle = nextTiltSign * options.tiltScanDegrees;
+    nextTiltSign = -nextTiltSign;
+    const float c = std::fabs(std::cos(tiltAngle * kDegToRad));
+    const float n = std::fabs(std::sin(tiltAngle * kDegToRad));
+    const Size canvas = tiltGray.view().size();
+    tiltSize = {std::min(canvas.width, static_cast<int>(bw * c + bh * n + 0.5f)),
+                std::min(canvas.height, static_cast<int>(bw * n + bh * c + 0.5f))};
+    if (tiltSize.width < window || tiltSize.height < window)
+        return false;
+    tiltCentre = {0.5f * static_cast<float>(x0 + x1), 0.5f * static_cast<float>(y0 + y1)};
+    return true;
+}
+
+long FaceTracker::Impl::tiltScanStep(long budget) noexcept
+{
+    // A face rolled by the scan's angle comes out upright in the turned region (warpRotated:
+    // region offset (u, v) from its centre shows the image at tiltCentre + R(angle) (u, v)).
+    if (!tiltActive) {
+        tiltActive = chooseTiltRegion();
+        if (!tiltActive) {
+            if (!tiltDone)
+                tiltCount = 0;  // nothing untracked moves: no tilted detections to report
+            return 0;
+        }
+    }
+    ImageView region = tiltGray.view();
+    region.width = tiltSize.width;
+    region.height = tiltSize.height;
+    warpRotated(grays[current].view(), tiltCentre, tiltAngle, 1.f, 1.f, region);
+    warpRotated(scanMask.view(), tiltCentre, tiltAngle,
+                static_cast<float>(tiltSize.width) / kTiltMaskSide,
+                static_cast<float>(tiltSize.height) / kTiltMaskSide, tiltMask.view());
+    tiltMaskIntegral.compute(tiltMask.view());
+    // Tracked faces are excluded as in the upright scan: their boxes about their centres as
+    // seen in the turned region.
+    const float c = std::cos(tiltAngle * kDegToRad);
+    const float n = std::sin(tiltAngle * kDegToRad);
+    const float hw = 0.5f * static_cast<float>(tiltSize.width);
+    const float hh = 0.5f * static_cast<float>(tiltSize.height);
+    int excludedCount = 0;
+    if (options.mode != FaceTrackingMode::None) {
+        for (int i = 0; i < trackCount; ++i) {
+            const TrackedFace& f = tracks[static_cast<std::size_t>(i)].face;
+            const float dx = f.centre.x - tiltCentre.x;
+            const float dy = f.centre.y - tiltCentre.y;
+            const float u = c * dx + n * dy + hw;
+            const float v = -n * dx + c * dy + hh;
+            const float half = 0.5f * f.size;
+            tiltExcluded[static_cast<std::size_t>(excludedCount++)] = {
+                static_cast<int>(u - half), static_cast<int>(v - half),
+                static_cast<int>(f.size + 0.5f), static_cast<int>(f.size + 0.5f)};
+        }
+    }
+    const bool done = tiltScan->detectMaskedIncremental(
+        region, &tiltMaskIntegral, std::max(options.minMaskFraction, kTiltMinMaskFraction),
+        std::span<const Rect>(tiltExcluded.data(), static_cast<std::size_t>(excludedCount)),
+        budget);
+    const long used = tiltScan->windowsEvaluated();
+    windows += used;
+    if (!done)
+        return used;
+    tiltActive = false;
+    if (!tiltDone)
+        tiltCount = 0;  // the first tilted scan completed this frame replaces the last ones
+    tiltDone = true;
+    const Size s = options.imageSize;
+    for (const Rect& b : tiltScan->faces()) {
+        if (tiltCount >= static_cast<int>(tiltHits.size()))
+            break;
+        const float u = static_cast<float>(b.x) + 0.5f * static_cast<float>(b.width) - hw;
+        const float v = static_cast<float>(b.y) + 0.5f * static_cast<float>(b.height) - hh;
+        const float x = tiltCentre.x + c * u - n * v;
+        const float y = tiltCentre.y + n * u + c * v;
+        // Only faces wholly in view: the turned region repeats the image's border pixels, and
+        // the upright scan finds a face entering at an edge once it is in (its box and roll
+        // from a part of a face are poor anyway).
+        const int side = std::max(b.width, b.height);
+        const float half = 0.5f * static_cast<float>(side);
+        if (x - half < 0.f || y - half < 0.f || x + half > static_cast<float>(s.width) ||
+            y + half > static_cast<float>(s.height))
+            continue;
+        tiltHitRolls[static_cast<std::size_t>(tiltCount)] = tiltAngle;
+        tiltHits[static_cast<std::size_t>(tiltCount++)] = {
+            static_cast<int>(x - 0.5f * static_cast<float>(side) + 0.5f),
+            static_cast<int>(y - 0.5f * static_cast<float>(side) + 0.5f), side, side};
+    }
+    return used;
+}
+
+bool FaceTracker::Impl::process(const ConstImageView& gray, const ConstImageView& mask,
+                                const IntegralImage* maskIntegral) noexcept
 {
     const Size s = options.imageSize;
     if (gray.format != PixelFormat::Gray8 || gray.width != s.width || gray.height != s.height ||
@@ -485,8 +722,13 @@ bool FaceTracker::Impl::process(const ConstImageView& gray, const ConstImageView
         std::memcpy(grays[current].view().row(y), gray.row(y), static_cast<std::size_t>(s.width));
     pyramids[current].build(grays[current].view());
     haveMotion = maskGiven && options.useMotionMask;
-    if (haveMotion)
-        motionIntegral.compute(mask);
+    motion = &motionIntegral;
+    if (haveMotion) {
+        if (maskIntegral != nullptr && maskIntegral->size() == s)
+            motion = maskIntegral;
+        else
+            motionIntegral.compute(mask);
+    }
 
     // 1. Existing tracks follow their corners.
     for (int i = 0; i < trackCount; ++i) {
@@ -542,17 +784,44 @@ bool FaceTracker::Impl::process(const ConstImageView& gray, const ConstImageView
         scanDone = true;
     }
     windows += scan.windowsEvaluated();
-    detectionCount = 0;
-    if (detected > 0) {
-        const std::span<const Rect> boxes = scan.faces();
-        for (const Rect& b : boxes)
-            if (detectionCount < static_cast<int>(outDetections.size()))
-                outDetections[static_cast<std::size_t>(detectionCount++)] = b;
+    if (scanDone) {
+        uprightCount = std::min(detected, static_cast<int>(uprightHits.size()));
+        for (int d = 0; d < uprightCount; ++d)
+            uprightHits[static_cast<std::size_t>(d)] = scan.faces()[static_cast<std::size_t>(d)];
     }
+    // Tilted scans of the moving regions no track covers, with what the budget left.
+    tiltDone = false;
+    if (tiltScan && haveMotion && options.mode != FaceTrackingMode::None) {
+        long left = options.tiltWindowBudget > 0 ? options.tiltWindowBudget
+                                                 : std::numeric_limits<long>::max();
+        if (options.detectionWindowBudget > 0)
+            left = std::min(left, options.detectionWindowBudget - scan.windowsEvaluated());
+        // One angle after the other while the budget lasts (both in a frame when it allows).
+        for (int k = 0; k < 2 && left > 0; ++k) {
+            const bool unlimited = left == std::numeric_limits<long>::max();
+            const long used = tiltScanStep(unlimited ? 0 : left);
+            if (tiltActive || used == 0)
+                break;  // the scan continues next frame, or there was nothing to scan
+            if (!unlimited)
+                left -= used;
+        }
+    }
+    detectionCount = 0;
+    for (int d = 0; d < uprightCount; ++d)
+        outDetections[static_cast<std::size_t>(detectionCount++)] =
+            uprightHits[static_cast<std::size_t>(d)];
+    for (int d = 0; d < tiltCount; ++d)
+        outDetections[static_cast<std::size_t>(detectionCount++)] =
+            tiltHits[static_cast<std::size_t>(d)];
 
-    // 3. Detections confirm the tracks they overlap; the others start new tracks.
-    for (int d = 0; d < detectionCount; ++d) {
-        const Rect box = outDetections[static_cast<std::size_t>(d)];
+    // 3. Detections (of the scans completed this frame) confirm the tracks they overlap; the
+    // others start new tracks, a tilted scan's with its angle as the first guess of the roll.
+    const int newUpright = scanDone ? uprightCount : 0;
+    const int newTilted = tiltDone ? tiltCount : 0;
+    for (int d = 0; d < newUpright + newTilted; ++d) {
+        const bool tilted = d >= newUpright;
+        const Rect box = tilted ? tiltHits[static_cast<std::size_t>(d - newUpright)]
+                                : uprightHits[static_cast<std::size_t>(d)];
         int best = -1;
         float bestIou = options.matchIou;
         for (int i = 0; i < trackCount; ++i) {
@@ -563,7 +832,18 @@ bool FaceTracker::Impl::process(const ConstImageView& gray, const ConstImageView
             }
         }
         if (best < 0) {
-            startTrack(box);
+            // A box around a tracked face's centre is that face with its surroundings (a
+            // grouping of windows over two heads), not a new face: faces do not overlap so.
+            bool holdsTrack = false;
+            for (int i = 0; i < trackCount && !holdsTrack; ++i) {
+                const Point2f c = tracks[static_cast<std::size_t>(i)].face.centre;
+                holdsTrack = c.x >= static_cast<float>(box.x) && c.y >= static_cast<float>(box.y) &&
+                             c.x < static_cast<float>(box.x + box.width) &&
+                             c.y < static_cast<float>(box.y + box.height);
+            }
+            if (!holdsTrack)
+                startTrack(box,
+                           tilted ? tiltHitRolls[static_cast<std::size_t>(d - newUpright)] : 0.f);
             continue;
         }
         Track& t = tracks[static_cast<std::size_t>(best)];
@@ -597,9 +877,9 @@ bool FaceTracker::Impl::process(const ConstImageView& gray, const ConstImageView
         // Static regions are ignored: a face shows it is a person by moving, i.e. its centre
         // leaving the place it last moved from by a few percent of its size (a photo on the wall
         // stays put, whatever the light does to the motion mask), or by a box full of motion.
-        // The first frames of a track settle its box (detections and re-anchoring move it a
-        // few pixels): they are no evidence either way.
-        constexpr int kSettleFrames = 5;
+        // Detector only: the first frames of a track settle its box (detections move it a few
+        // pixels): they are no evidence either way. Tracking measures the motion of the face's
+        // corners, which re-anchoring does not add to, so it counts from the first frame.
         if (options.mode == FaceTrackingMode::None) {
             // Detections jitter by a pixel or so from frame to frame.
             const float jump =
@@ -608,11 +888,12 @@ bool FaceTracker::Impl::process(const ConstImageView& gray, const ConstImageView
                 t.path += jump;
             t.lastCentre = t.face.centre;
         }
-        if (t.face.age < kSettleFrames)
+        if (options.mode == FaceTrackingMode::None && t.face.age < kSettleFrames)
             t.anchor = t.path;
         const float step = std::max(1.5f, options.minFaceMoveFraction * t.face.size);
+        const bool maskCounts = !(t.tiltFound && t.face.state == FaceState::Tentative);
         if (t.path - t.anchor > step ||
-            motionFraction(t.face.box()) >= options.minFaceMotionFraction) {
+            (maskCounts && motionFraction(t.face.box()) >= options.minFaceMotionFraction)) {
             t.lastMotionFrame = frameIndex;
             t.anchor = t.path;
         }
@@ -680,7 +961,13 @@ FaceTracker& FaceTracker::operator=(FaceTracker&&) noexcept = default;
 
 bool FaceTracker::process(const ConstImageView& gray, const ConstImageView& motionMask) noexcept
 {
-    return impl_->process(gray, motionMask);
+    return impl_->process(gray, motionMask, nullptr);
+}
+
+bool FaceTracker::process(const ConstImageView& gray, const ConstImageView& motionMask,
+                          const IntegralImage* maskIntegral) noexcept
+{
+    return impl_->process(gray, motionMask, maskIntegral);
 }
 
 std::span<const TrackedFace> FaceTracker::faces() const noexcept
@@ -707,6 +994,12 @@ void FaceTracker::reset() noexcept
     impl_->trackCount = 0;
     impl_->havePrevious = false;
     impl_->detectionCount = 0;
+    impl_->uprightCount = 0;
+    impl_->tiltCount = 0;
+    impl_->tiltActive = false;
+    if (impl_->tiltScan)
+        impl_->tiltScan->resetIncremental();
+    impl_->scan.resetIncremental();
     impl_->recent.fill(RecentArea{});
 }
 

@@ -19,20 +19,29 @@ constexpr float kLimit = 16384.0f;
 bool warpUpright(const ConstImageView& gray, Point2f centre, float rollDegrees, float sourceSide,
                  ImageView patch) noexcept
 {
+    if (patch.empty() || !(sourceSide > 0.0f) || !std::isfinite(sourceSide))
+        return false;
+    return warpRotated(gray, centre, rollDegrees, sourceSide / static_cast<float>(patch.width),
+                       sourceSide / static_cast<float>(patch.height), patch);
+}
+
+bool warpRotated(const ConstImageView& gray, Point2f centre, float rollDegrees, float unitXf,
+                 float unitYf, ImageView patch) noexcept
+{
     if (gray.empty() || gray.format != PixelFormat::Gray8 || patch.empty() ||
         patch.format != PixelFormat::Gray8) {
         return false;
     }
-    if (!(sourceSide > 0.0f) || !std::isfinite(sourceSide) || !std::isfinite(rollDegrees) ||
-        !std::isfinite(centre.x) || !std::isfinite(centre.y)) {
+    if (!(unitXf > 0.0f) || !(unitYf > 0.0f) || !std::isfinite(unitXf) || !std::isfinite(unitYf) ||
+        !std::isfinite(rollDegrees) || !std::isfinite(centre.x) || !std::isfinite(centre.y)) {
         return false;
     }
     const double rad = static_cast<double>(rollDegrees) * kPi / 180.0;
     const double c = std::cos(rad);
     const double s = std::sin(rad);
     // One patch pixel is `unit` source pixels along the rotated axes.
-    const double unitX = static_cast<double>(sourceSide) / patch.width;
-    const double unitY = static_cast<double>(sourceSide) / patch.height;
+    const double unitX = unitXf;
+    const double unitY = unitYf;
     // Source position (in pixel-centre coordinates: minus 0.5) of patch pixel (0, 0)'s centre,
     // and the steps along a patch row (u) and down a column (v).
     const double u0 = (0.5 - 0.5 * patch.width) * unitX;

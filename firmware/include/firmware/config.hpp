@@ -96,7 +96,9 @@ struct FacesConfig {
     int confirmFrames = 2;
     int graceFrames = 5;
     int maxFaces = 8;
-    int detectionBudget = 5000;  ///< detector windows per frame; 0 = whole scan every frame
+    int detectionBudget = 5000;   ///< detector windows per frame; 0 = whole scan every frame
+    double tiltScanDeg = 25.0;    ///< moving areas also scanned turned by +-this; 0 = off
+    int tiltWindowBudget = 4000;  ///< tilted-scan windows per frame; 0 = no limit of its own
     double staticDropS = 300.0;   ///< a face that has not moved this long is background
     int motionComponents = 3;
     double motionLearningRate = 0.005;

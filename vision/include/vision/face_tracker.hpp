@@ -7,11 +7,15 @@
 //     Lucas-Kanade with a forward-backward check (translation / similarity / affine, RANSAC);
 //     corners are replenished inside the box when too few survive;
 //  2. the detector scans where there is motion (or a face was seen recently) and no track is,
-//     within a per-frame window budget (a scan may take several frames);
+//     within a per-frame window budget (a scan may take several frames); the moving regions no
+//     track covers are also scanned turned by +-tiltScanDegrees, for faces that enter tilted
+//     beyond the upright cascade's reach;
 //  3. a track overlapping a detection is confirmed by it; a detection overlapping no track starts a
-//     new track (initial roll by point symmetry of its corners);
+//     new track (initial roll by symmetry, near a tilted scan's angle for its hits), unless its
+//     box holds a tracked face's centre (a grouping over two heads);
 //  4. a track without a detection is verified by warping its face upright by its roll into a small
-//     patch and running first-hit detection there; a failed verification is a miss;
+//     patch and running first-hit detection there (again at the roll +-12 degrees if that fails:
+//     the tracked roll drifts); a failed verification is a miss;
 //  5. a track becomes Confirmed (shown) after `confirmFrames` detections or verifications in a
 //     row, and is dropped after `graceFrames` misses in a row.
 // Ids are stable for the life of a track and never reused while the tracker lives.
@@ -111,6 +115,16 @@ struct FaceTrackerOptions {
     float minFaceMotionFraction = 0.6f;
     int confirmMotionFrames = 30;
     int staticDropFrames = 9000;
+    /// Faces that enter tilted beyond the upright cascade's reach (about +-15 degrees): the
+    /// moving regions no track covers are also scanned turned by +tiltScanDegrees and
+    /// -tiltScanDegrees (one angle per scan, alternating), within what the upright scan left of
+    /// the window budget; a hit there starts a track with that roll (refined from the image).
+    /// 0: upright scans only.
+    float tiltScanDegrees = 25.f;
+    /// Tilted-scan windows per frame at most (0 = no limit of its own); a longer tilted scan
+    /// continues on the next frames. Tilted scans share detectionWindowBudget too: they get only
+    /// what the upright scan left of it.
+    long tiltWindowBudget = 4000;
     /// Every this many verified frames, verification runs a grouped scan of the upright patch
     /// instead of first hit and re-centres / re-sizes the track from it (stops scale drift).
     int reanchorEvery = 5;
@@ -130,14 +144,21 @@ public:
     /// scannable, and motion is not required of a face). Returns false (tracks unchanged,
     /// lastError() set) on a wrong image.
     bool process(const ConstImageView& gray, const ConstImageView& motionMask) noexcept;
+    /// The same with the mask's integral image already computed (MotionStage keeps one): saves
+    /// recomputing it. `maskIntegral` must be that of `motionMask`; null: computed here.
+    bool process(const ConstImageView& gray, const ConstImageView& motionMask,
+                 const IntegralImage* maskIntegral) noexcept;
 
     /// Live tracks, Tentative ones included (check shown()), oldest first.
     std::span<const TrackedFace> faces() const noexcept;
-    /// Detections of the last completed scan (working-image boxes), for the HUD and evaluation.
+    /// Detections of the last completed scans (working-image boxes, upright and tilted; a
+    /// tilted hit as the axis-aligned box of its size about its centre), for the HUD and
+    /// evaluation.
     std::span<const Rect> detections() const noexcept;
     /// True when the last process() completed a detector scan.
     bool scanCompleted() const noexcept;
-    /// Detector windows evaluated by the last process() (scan and verification).
+    /// Detector windows evaluated by the last process() (upright and tilted scans, and
+    /// verification).
     long windowsEvaluated() const noexcept;
 
     /// Drops every track (e.g. after the camera came back).

@@ -21,4 +21,12 @@ namespace vision {
 bool warpUpright(const ConstImageView& gray, Point2f centre, float rollDegrees, float sourceSide,
                  ImageView patch) noexcept;
 
+/// The general form (rotated detection scans): patch pixels are `unitX` x `unitY` source pixels
+/// along the rotated axes, so patch offset (u, v) from the patch centre reads the image at
+/// centre + R(roll) (u * unitX, v * unitY). warpUpright is unitX = sourceSide / patch.width,
+/// unitY = sourceSide / patch.height. Same sampling, border and failure rules (non-positive or
+/// non-finite units).
+bool warpRotated(const ConstImageView& gray, Point2f centre, float rollDegrees, float unitX,
+                 float unitY, ImageView patch) noexcept;
+
 }  // namespace vision
