@@ -5,6 +5,7 @@
 #include <GLES2/gl2.h>
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -17,20 +18,29 @@ namespace render {
 namespace {
 
 // Lighting per vertex (Gouraud): the meshes are dense enough that it looks the same as per
-// fragment, and llvmpipe spends its time on fragments (hats cover much of the screen).
-constexpr const char* kShadeVertexShader = R"(#version 100
+// fragment, and llvmpipe spends its time on fragments (hats cover much of the screen). Untextured
+// meshes (all of the project's) get their final colour per vertex, so their fragment shader only
+// passes one varying through; textured ones use a second program (TEXTURED defined) that
+// multiplies the texture in per fragment. Two programs rather than a uniform branch: llvmpipe runs
+// the texture fetch of an untaken branch on every fragment anyway.
+constexpr const char* kShadeVertexShader = R"(
 attribute vec3 aPosition;  // model axes and units
 attribute vec3 aNormal;
-attribute vec2 aUv;
 uniform mat4 uModelView;   // model -> camera frame (metres, x right, y down, z forward)
 uniform mat4 uProjection;  // camera frame -> clip, mirrored and cropped as the video
 uniform mat3 uNormalMatrix;
 uniform vec3 uLightDirection;  // towards the light, camera frame, unit
 uniform vec3 uLight;           // ambient, diffuse, specular, already times the face's brightness
 uniform float uShininess;      // 0: matt
+#ifdef TEXTURED
+attribute vec2 aUv;
 varying vec3 vDiffuse;   // multiplies the material colour
 varying vec3 vSpecular;  // added
 varying vec2 vUv;
+#else
+uniform vec4 uColor;     // the material's, alpha already times the face's fade
+varying vec4 vColor;
+#endif
 void main()
 {
     vec4 p = uModelView * vec4(aPosition, 1.0);
@@ -39,33 +49,43 @@ void main()
     // Two-sided: the side of the surface the camera sees.
     if (dot(n, view) < 0.0)
         n = -n;
-    vDiffuse = vec3(uLight.x + uLight.y * max(dot(n, uLightDirection), 0.0));
-    vSpecular = vec3(0.0);
+    vec3 diffuse = vec3(uLight.x + uLight.y * max(dot(n, uLightDirection), 0.0));
+    vec3 specular = vec3(0.0);
     if (uShininess > 0.0) {
         vec3 h = normalize(uLightDirection + view);
-        vSpecular = vec3(uLight.z * pow(max(dot(n, h), 0.0), uShininess));
+        specular = vec3(uLight.z * pow(max(dot(n, h), 0.0), uShininess));
     }
+#ifdef TEXTURED
+    vDiffuse = diffuse;
+    vSpecular = specular;
     vUv = aUv;
+#else
+    vColor = vec4(min(uColor.rgb * diffuse + specular, vec3(1.0)), uColor.a);
+#endif
     gl_Position = uProjection * p;
 }
 )";
 
-constexpr const char* kShadeFragmentShader = R"(#version 100
+constexpr const char* kShadeFragmentShader = R"(
 precision mediump float;
-uniform vec4 uColor;
+#ifdef TEXTURED
+uniform vec4 uColor;  // the material's, alpha already times the face's fade
 uniform sampler2D uTexture;
-uniform float uUseTexture;
-uniform float uAlpha;  // the face's fade
 varying vec3 vDiffuse;
 varying vec3 vSpecular;
 varying vec2 vUv;
 void main()
 {
-    vec4 base = uColor;
-    if (uUseTexture > 0.5)
-        base *= texture2D(uTexture, vUv);
-    gl_FragColor = vec4(min(base.rgb * vDiffuse + vSpecular, vec3(1.0)), base.a * uAlpha);
+    vec4 base = uColor * texture2D(uTexture, vUv);
+    gl_FragColor = vec4(min(base.rgb * vDiffuse + vSpecular, vec3(1.0)), base.a);
 }
+#else
+varying vec4 vColor;
+void main()
+{
+    gl_FragColor = vColor;
+}
+#endif
 )";
 
 constexpr const char* kDepthVertexShader = R"(#version 100
@@ -86,7 +106,7 @@ void main()
 )";
 
 constexpr float kDegrees = 3.14159265358979f / 180.f;
-// 256 triangles: llvmpipe's cost is per triangle, and the silhouette stays within 2 % of the
+// 224 triangles: llvmpipe's cost is per triangle, and the silhouette stays within 2 % of the
 // head's radius (1 - cos 11.25 degrees).
 constexpr int kProxySegments = 16;  // around the vertical axis
 constexpr int kProxyRings = 8;      // pole to pole
@@ -101,28 +121,42 @@ Eigen::Vector3f toVector(const std::array<float, 3>& a)
 }
 
 // The head proxy of unit semi-axes as a triangle list (positions only): a sphere whose
-// horizontal sections are superellipses of exponent `n` (HeadModel::proxySquareness).
+// horizontal sections are superellipses of exponent `n` (HeadModel::proxySquareness). Wound
+// counter-clockwise seen from outside like the closed overlay meshes, so its back half is culled
+// (it is convex: the front half is the nearer one everywhere), and without the zero-area
+// triangles at the poles.
 std::vector<float> unitProxy(float n)
 {
     std::vector<float> out;
     auto superPower = [n](float c) { return std::copysign(std::pow(std::fabs(c), 2.f / n), c); };
-    auto point = [&](int ring, int segment, std::vector<float>& to) {
+    auto point = [&](int ring, int segment) {
         const float theta = static_cast<float>(ring) * 180.f / kProxyRings * kDegrees;
         const float phi = static_cast<float>(segment) * 360.f / kProxySegments * kDegrees;
-        to.push_back(std::sin(theta) * superPower(std::cos(phi)));
-        to.push_back(std::cos(theta));
-        to.push_back(std::sin(theta) * superPower(std::sin(phi)));
+        out.push_back(std::sin(theta) * superPower(std::cos(phi)));
+        out.push_back(std::cos(theta));
+        out.push_back(std::sin(theta) * superPower(std::sin(phi)));
     };
     for (int r = 0; r < kProxyRings; ++r)
         for (int s = 0; s < kProxySegments; ++s) {
-            point(r, s, out);
-            point(r + 1, s, out);
-            point(r + 1, s + 1, out);
-            point(r, s, out);
-            point(r + 1, s + 1, out);
-            point(r, s + 1, out);
+            // Ring r + 1 is below ring r, segment s + 1 is further round towards +z.
+            if (r + 1 < kProxyRings) {
+                point(r, s);
+                point(r + 1, s + 1);
+                point(r + 1, s);
+            }
+            if (r > 0) {
+                point(r, s);
+                point(r, s + 1);
+                point(r + 1, s + 1);
+            }
         }
     return out;
+}
+
+// "#version 100" (which must come first), the defines, then the shader.
+std::string shaderSource(bool textured, const char* body)
+{
+    return std::string("#version 100\n") + (textured ? "#define TEXTURED\n" : "") + body;
 }
 
 struct Affine {
@@ -162,6 +196,71 @@ Affine modelToHead(const Overlay& overlay, const HeadModel& head)
             kModelToHeadAxes * (toVector(*anchor) * w + s * toVector(overlay.offset))};
 }
 
+// A rectangle of window pixels, x0 <= x < x1, y0 <= y < y1, y up (glScissor's).
+struct PixelRect {
+    int x0 = 0;
+    int y0 = 0;
+    int x1 = 0;
+    int y1 = 0;
+    long area() const noexcept { return static_cast<long>(x1 - x0) * (y1 - y0); }
+    bool intersects(const PixelRect& o) const noexcept
+    {
+        return x0 < o.x1 && o.x0 < x1 && y0 < o.y1 && o.y0 < y1;
+    }
+    PixelRect intersection(const PixelRect& o) const noexcept
+    {
+        return {std::max(x0, o.x0), std::max(y0, o.y0), std::min(x1, o.x1), std::min(y1, o.y1)};
+    }
+    PixelRect hull(const PixelRect& o) const noexcept
+    {
+        return {std::min(x0, o.x0), std::min(y0, o.y0), std::max(x1, o.x1), std::max(y1, o.y1)};
+    }
+    void scissor() const noexcept { glScissor(x0, y0, x1 - x0, y1 - y0); }
+};
+
+// The window pixels that triangles with corners `points` can cover when drawn with
+// `modelViewProjection` into `viewport`: the projected points' bounds (a triangle in front of the
+// camera projects to the triangle of its projected corners) plus a pixel. The whole viewport when
+// a point is not in front of the camera.
+PixelRect windowBounds(const Eigen::Matrix4f& modelViewProjection,
+                       const std::vector<Eigen::Vector3f>& points,
+                       const PixelRect& viewport) noexcept
+{
+    Eigen::Matrix<float, 3, 4> xyw;  // clip x, y and w; z is not needed
+    xyw << modelViewProjection.row(0), modelViewProjection.row(1), modelViewProjection.row(3);
+    Eigen::Vector2f lo(INFINITY, INFINITY);
+    Eigen::Vector2f hi(-INFINITY, -INFINITY);
+    for (const Eigen::Vector3f& p : points) {
+        const Eigen::Vector3f clip = xyw.leftCols<3>() * p + xyw.col(3);
+        if (!(clip.z() > 1e-6f))
+            return viewport;
+        const Eigen::Vector2f ndc = clip.head<2>() / clip.z();
+        lo = lo.cwiseMin(ndc);
+        hi = hi.cwiseMax(ndc);
+    }
+    if (!(lo.minCoeff() > -1e4f && hi.maxCoeff() < 1e4f))
+        return viewport;  // no points, NaN or absurd: do not trust it
+    const float sx = 0.5f * static_cast<float>(viewport.x1 - viewport.x0);
+    const float sy = 0.5f * static_cast<float>(viewport.y1 - viewport.y0);
+    const PixelRect bounds{viewport.x0 + static_cast<int>(std::floor((lo.x() + 1.f) * sx)) - 1,
+                           viewport.y0 + static_cast<int>(std::floor((lo.y() + 1.f) * sy)) - 1,
+                           viewport.x0 + static_cast<int>(std::ceil((hi.x() + 1.f) * sx)) + 1,
+                           viewport.y0 + static_cast<int>(std::ceil((hi.y() + 1.f) * sy)) + 1};
+    return bounds.intersection(viewport);
+}
+
+// The distinct points of a triangle list of xyz floats.
+std::vector<Eigen::Vector3f> distinctPoints(std::vector<std::array<float, 3>> points)
+{
+    std::sort(points.begin(), points.end());
+    points.erase(std::unique(points.begin(), points.end()), points.end());
+    std::vector<Eigen::Vector3f> out;
+    out.reserve(points.size());
+    for (const auto& p : points)
+        out.emplace_back(p[0], p[1], p[2]);
+    return out;
+}
+
 }  // namespace
 
 struct FaceOverlayLayer::Gl {
@@ -175,27 +274,111 @@ struct FaceOverlayLayer::Gl {
     struct Part {           // an overlay: its meshes and placement
         Overlay placement;  // meshes left empty: only the placement fields are used
         std::vector<Mesh> meshes;
+        std::vector<Eigen::Vector3f> points;  // every distinct vertex position, model units
+    };
+    struct Shade {  // one of the two overlay programs and its uniforms
+        explicit Shade(bool textured)
+            : program(textured ? "textured overlay" : "overlay",
+                      shaderSource(textured, kShadeVertexShader).c_str(),
+                      shaderSource(textured, kShadeFragmentShader).c_str(),
+                      {"aPosition", "aNormal", "aUv"}),
+              textureUnit(textured ? program.uniform("uTexture") : -1)
+        {
+        }
+        detail::GlProgram program;
+        GLint modelView = program.uniform("uModelView");
+        GLint projection = program.uniform("uProjection");
+        GLint normalMatrix = program.uniform("uNormalMatrix");
+        GLint color = program.uniform("uColor");
+        GLint lightDirection = program.uniform("uLightDirection");
+        GLint light = program.uniform("uLight");
+        GLint shininess = program.uniform("uShininess");
+        GLint textureUnit;
+        int faceUniformsOf = -1;  // the draw pass whose face uniforms it has (-1: none yet)
     };
 
-    detail::GlProgram shade{
-        "overlay", kShadeVertexShader, kShadeFragmentShader, {"aPosition", "aNormal", "aUv"}};
-    GLint modelView = shade.uniform("uModelView");
-    GLint projection = shade.uniform("uProjection");
-    GLint normalMatrix = shade.uniform("uNormalMatrix");
-    GLint color = shade.uniform("uColor");
-    GLint textureUnit = shade.uniform("uTexture");
-    GLint useTexture = shade.uniform("uUseTexture");
-    GLint lightDirection = shade.uniform("uLightDirection");
-    GLint light = shade.uniform("uLight");
-    GLint shininess = shade.uniform("uShininess");
-    GLint alpha = shade.uniform("uAlpha");
+    Shade lit{false};
+    Shade textured{true};
 
     detail::GlProgram depth{"head proxy", kDepthVertexShader, kDepthFragmentShader, {"aPosition"}};
     GLint modelViewProjection = depth.uniform("uModelViewProjection");
     detail::GlBuffer proxy;
-    GLsizei proxyCount = 0;
+    detail::GlBuffer proxyIndices;
+    GLsizei proxyCount = 0;                    // indices
+    std::vector<Eigen::Vector3f> proxyPoints;  // distinct, unit semi-axes
 
     std::vector<Part> overlays;
+    bool variantsPrepared = false;
+
+    // llvmpipe compiles a shader variant (heap, LLVM, milliseconds) the first time a program is
+    // drawn in a new GL state, and Mesa makes its scissored clear's shaders on first use. This
+    // makes all of them on the first frame with overlays (with the framebuffer they are drawn
+    // into, and rasterising nothing), so that no later frame does: not when a fade ends, lenses
+    // first appear or a face comes near.
+    void prepareShaderVariants(const PixelRect& viewport) noexcept
+    {
+        if (variantsPrepared)
+            return;
+        variantsPrepared = true;
+        glEnable(GL_SCISSOR_TEST);
+        glScissor(viewport.x0, viewport.y0, 1, 1);
+        glClear(GL_DEPTH_BUFFER_BIT);  // a corner's depth, cleared again before it is used
+        glScissor(viewport.x0 - 2, viewport.y0 - 2, 1, 1);  // outside: nothing is drawn
+
+        glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);  // the head proxies' state
+        glUseProgram(depth.id());
+        glBindBuffer(GL_ARRAY_BUFFER, proxy.id());
+        glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, proxyIndices.id());
+        glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 3 * sizeof(float), nullptr);
+        glEnableVertexAttribArray(0);
+        glDrawElements(GL_TRIANGLES, 3, GL_UNSIGNED_SHORT, nullptr);
+
+        glEnableVertexAttribArray(1);
+        for (const bool withTexture : {false, true}) {
+            const Mesh* mesh = nullptr;
+            for (const Part& part : overlays)
+                for (const Mesh& m : part.meshes)
+                    if (mesh == nullptr && (m.texture != nullptr) == withTexture && m.count >= 3)
+                        mesh = &m;
+            if (mesh == nullptr)
+                continue;
+            glUseProgram((withTexture ? textured : lit).program.id());
+            bindMesh(*mesh);
+            // Opaque; a fading face's depth pass; its colour pass and lenses.
+            glDisable(GL_BLEND);
+            glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+            glDrawElements(GL_TRIANGLES, 3, GL_UNSIGNED_SHORT, nullptr);
+            glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+            glDrawElements(GL_TRIANGLES, 3, GL_UNSIGNED_SHORT, nullptr);
+            glEnable(GL_BLEND);
+            glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+            glDepthMask(GL_FALSE);
+            glDrawElements(GL_TRIANGLES, 3, GL_UNSIGNED_SHORT, nullptr);
+            glDepthMask(GL_TRUE);
+        }
+        glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+        glDisableVertexAttribArray(1);
+        glDisableVertexAttribArray(2);
+        glDisable(GL_SCISSOR_TEST);
+    }
+
+    // Binds a mesh's buffers, attributes (the texture coordinates only for a textured mesh)
+    // and texture.
+    static void bindMesh(const Mesh& mesh) noexcept
+    {
+        glBindBuffer(GL_ARRAY_BUFFER, mesh.vertices->id());
+        const auto stride = static_cast<GLsizei>(sizeof(OverlayVertex));
+        glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, stride, nullptr);
+        glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, stride,
+                              reinterpret_cast<const void*>(3 * sizeof(float)));
+        if (mesh.texture) {
+            glEnableVertexAttribArray(2);
+            glVertexAttribPointer(2, 2, GL_FLOAT, GL_FALSE, stride,
+                                  reinterpret_cast<const void*>(6 * sizeof(float)));
+            glBindTexture(GL_TEXTURE_2D, mesh.texture->id());
+        }
+        glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, mesh.indices->id());
+    }
 };
 
 FaceOverlayLayer::FaceOverlayLayer(const OverlayCatalogue& catalogue,
@@ -217,6 +400,11 @@ FaceOverlayLayer::FaceOverlayLayer(const OverlayCatalogue& catalogue,
         part.placement.scale = overlay.scale;
         part.placement.offset = overlay.offset;
         part.placement.rotationDegrees = overlay.rotationDegrees;
+        std::vector<std::array<float, 3>> positions;
+        for (const OverlayMesh& mesh : overlay.meshes)
+            for (const OverlayVertex& v : mesh.vertices)
+                positions.push_back({v.position[0], v.position[1], v.position[2]});
+        part.points = distinctPoints(std::move(positions));
         for (const OverlayMesh& mesh : overlay.meshes) {
             Gl::Mesh m;
             m.vertices = std::make_unique<detail::GlBuffer>();
@@ -250,11 +438,29 @@ FaceOverlayLayer::FaceOverlayLayer(const OverlayCatalogue& catalogue,
     }
     if (!(options.head.proxySquareness >= 1.f && options.head.proxySquareness <= 10.f))
         throw std::runtime_error("FaceOverlayLayer: head proxy squareness must be in [1, 10]");
+    // Indexed: each distinct vertex is transformed once.
     const std::vector<float> sphere = unitProxy(options.head.proxySquareness);
-    gl_->proxyCount = static_cast<GLsizei>(sphere.size() / 3);
+    std::vector<std::array<float, 3>> corners;
+    for (std::size_t i = 0; i + 2 < sphere.size(); i += 3)
+        corners.push_back({sphere[i], sphere[i + 1], sphere[i + 2]});
+    std::vector<std::array<float, 3>> distinct = corners;
+    std::sort(distinct.begin(), distinct.end());
+    distinct.erase(std::unique(distinct.begin(), distinct.end()), distinct.end());
+    std::vector<std::uint16_t> indices;
+    for (const auto& corner : corners)
+        indices.push_back(static_cast<std::uint16_t>(
+            std::lower_bound(distinct.begin(), distinct.end(), corner) - distinct.begin()));
+    gl_->proxyCount = static_cast<GLsizei>(indices.size());
+    for (const auto& p : distinct)
+        gl_->proxyPoints.emplace_back(p[0], p[1], p[2]);
     glBindBuffer(GL_ARRAY_BUFFER, gl_->proxy.id());
-    glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(sphere.size() * sizeof(float)),
-                 sphere.data(), GL_STATIC_DRAW);
+    glBufferData(GL_ARRAY_BUFFER,
+                 static_cast<GLsizeiptr>(distinct.size() * sizeof(std::array<float, 3>)),
+                 distinct.data(), GL_STATIC_DRAW);
+    glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, gl_->proxyIndices.id());
+    glBufferData(GL_ELEMENT_ARRAY_BUFFER,
+                 static_cast<GLsizeiptr>(indices.size() * sizeof(std::uint16_t)), indices.data(),
+                 GL_STATIC_DRAW);
     glBindBuffer(GL_ARRAY_BUFFER, 0);
     glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, 0);
     const GLenum error = glGetError();
@@ -366,8 +572,12 @@ void FaceOverlayLayer::draw(const LayerContext& context) noexcept
     struct Drawn {
         vision::HeadPose pose;
         const Selection* selection;
+        Eigen::Matrix4f modelView;       // the overlay's model -> camera frame
+        Eigen::Matrix4f proxyModelView;  // the unit head proxy's
+        PixelRect overlayPixels;         // what the overlay can cover
+        PixelRect proxyPixels;           // what its head proxy has to cover
     };
-    std::array<Drawn, kMaxFaces> drawn;
+    std::array<Drawn, kMaxFaces> drawn{};
     int count = 0;
     const vision::CameraModel camera{context.image, options_.verticalFovDegrees};
     for (int i = 0; i < faceCount_; ++i) {
@@ -391,7 +601,8 @@ void FaceOverlayLayer::draw(const LayerContext& context) noexcept
             drawn[static_cast<std::size_t>(at)] = drawn[static_cast<std::size_t>(at - 1)];
             --at;
         }
-        drawn[static_cast<std::size_t>(at)] = {pose, s};
+        drawn[static_cast<std::size_t>(at)].pose = pose;
+        drawn[static_cast<std::size_t>(at)].selection = s;
     }
     if (count == 0)
         return;
@@ -416,6 +627,34 @@ void FaceOverlayLayer::draw(const LayerContext& context) noexcept
         0.f, 0.f, (fa + n) / (fa - n), -2.f * fa * n / (fa - n),  //
         0.f, 0.f, 1.f, 0.f;
 
+    // Where each face's overlay and head proxy go, in window pixels.
+    const HeadModel& head = options_.head;
+    const float w = head.faceWidthMetres;
+    const Eigen::Matrix3f proxyAxes =
+        kModelToHeadAxes * (toVector(head.proxySemiAxes) * w).asDiagonal();
+    const Eigen::Vector3f proxyCentre = kModelToHeadAxes * toVector(head.proxyCentre) * w;
+    GLint v[4] = {0, 0, 0, 0};  // what window pixels the NDC map to (the renderer's glViewport)
+    glGetIntegerv(GL_VIEWPORT, v);
+    const PixelRect viewport{v[0], v[1], v[0] + v[2], v[1] + v[3]};
+    long overlayArea = 0;
+    for (int i = 0; i < count; ++i) {
+        Drawn& face = drawn[static_cast<std::size_t>(i)];
+        const Gl::Part& part = gl_->overlays[static_cast<std::size_t>(face.selection->overlay)];
+        const Affine model = modelToHead(part.placement, head);
+        face.modelView.setIdentity();
+        face.modelView.topLeftCorner<3, 3>() = face.pose.rotation * model.linear;
+        face.modelView.topRightCorner<3, 1>() =
+            face.pose.rotation * model.translation + face.pose.translation;
+        face.proxyModelView.setIdentity();
+        face.proxyModelView.topLeftCorner<3, 3>() = face.pose.rotation * proxyAxes;
+        face.proxyModelView.topRightCorner<3, 1>() =
+            face.pose.rotation * proxyCentre + face.pose.translation;
+        face.overlayPixels = windowBounds(projection * face.modelView, part.points, viewport);
+        face.proxyPixels =
+            windowBounds(projection * face.proxyModelView, gl_->proxyPoints, viewport);
+        overlayArea += face.overlayPixels.area();
+    }
+
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LEQUAL);
     glDepthMask(GL_TRUE);
@@ -426,84 +665,115 @@ void FaceOverlayLayer::draw(const LayerContext& context) noexcept
     glCullFace(GL_BACK);
     glFrontFace(m[0] * m[2] < 0.f ? GL_CCW : GL_CW);
     glClearDepthf(1.f);
-    glClear(GL_DEPTH_BUFFER_BIT);
+    gl_->prepareShaderVariants(viewport);  // the first time only
+    // Only the depth under the overlays matters: nothing else is depth-tested. llvmpipe clears a
+    // scissored rectangle by drawing it, ~6 times its whole-buffer clear's cost per pixel (and
+    // that alone is ~0.35 ms at 720p), so the rectangles are cleared while they are small and
+    // the whole buffer otherwise.
+    if (overlayArea * 6 < viewport.area()) {
+        glEnable(GL_SCISSOR_TEST);
+        for (int i = 0; i < count; ++i) {
+            drawn[static_cast<std::size_t>(i)].overlayPixels.scissor();
+            glClear(GL_DEPTH_BUFFER_BIT);
+        }
+    } else {
+        glDisable(GL_SCISSOR_TEST);
+        glClear(GL_DEPTH_BUFFER_BIT);
+    }
 
-    const HeadModel& head = options_.head;
-    const float w = head.faceWidthMetres;
-
-    // 1. Head proxies, depth only.
+    // 1. Head proxies, depth only, each where overlays can be (outside, the depth is stale and
+    //    no fragment is tested against it).
     if (options_.headProxy) {
+        glEnable(GL_SCISSOR_TEST);
         glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+        glEnable(GL_CULL_FACE);
         glUseProgram(gl_->depth.id());
         glBindBuffer(GL_ARRAY_BUFFER, gl_->proxy.id());
+        glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, gl_->proxyIndices.id());
         glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 3 * sizeof(float), nullptr);
         glEnableVertexAttribArray(0);
-        const Eigen::Matrix3f axes =
-            kModelToHeadAxes * (toVector(head.proxySemiAxes) * w).asDiagonal();
-        const Eigen::Vector3f centre = kModelToHeadAxes * toVector(head.proxyCentre) * w;
         for (int i = 0; i < count; ++i) {
-            const vision::HeadPose& pose = drawn[static_cast<std::size_t>(i)].pose;
-            Eigen::Matrix4f modelView = Eigen::Matrix4f::Identity();
-            modelView.topLeftCorner<3, 3>() = pose.rotation * axes;
-            modelView.topRightCorner<3, 1>() = pose.rotation * centre + pose.translation;
-            const Eigen::Matrix4f mvp = projection * modelView;
+            const Drawn& face = drawn[static_cast<std::size_t>(i)];
+            // Where overlays (its own and the others') can be behind it.
+            PixelRect where;
+            bool any = false;
+            for (int j = 0; j < count; ++j) {
+                const PixelRect& overlay = drawn[static_cast<std::size_t>(j)].overlayPixels;
+                if (!overlay.intersects(face.proxyPixels))
+                    continue;
+                const PixelRect part = overlay.intersection(face.proxyPixels);
+                where = any ? where.hull(part) : part;
+                any = true;
+            }
+            if (!any)
+                continue;
+            where.scissor();
+            const Eigen::Matrix4f mvp = projection * face.proxyModelView;
             glUniformMatrix4fv(gl_->modelViewProjection, 1, GL_FALSE, mvp.data());
-            glDrawArrays(GL_TRIANGLES, 0, gl_->proxyCount);
+            glDrawElements(GL_TRIANGLES, gl_->proxyCount, GL_UNSIGNED_SHORT, nullptr);
         }
         glDisableVertexAttribArray(0);
         glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
     }
+    glDisable(GL_SCISSOR_TEST);
 
     // 2 and 3. The overlays: opaque meshes, then transparent ones.
-    glUseProgram(gl_->shade.id());
-    glUniformMatrix4fv(gl_->projection, 1, GL_FALSE, projection.data());
-    glUniform1i(gl_->textureUnit, 0);
     Eigen::Vector3f toLight = toVector(options_.lightDirection);
     toLight = toLight.norm() > 0.f ? toLight.normalized() : Eigen::Vector3f(0.f, 0.f, -1.f);
-    glUniform3f(gl_->lightDirection, toLight.x(), toLight.y(), toLight.z());
+    for (Gl::Shade* shade : {&gl_->textured, &gl_->lit}) {  // ends with the usual one in use
+        glUseProgram(shade->program.id());
+        glUniformMatrix4fv(shade->projection, 1, GL_FALSE, projection.data());
+        glUniform3f(shade->lightDirection, toLight.x(), toLight.y(), toLight.z());
+        if (shade->textureUnit >= 0)
+            glUniform1i(shade->textureUnit, 0);
+        shade->faceUniformsOf = -1;
+    }
+    const Gl::Shade* inUse = &gl_->lit;
     glEnableVertexAttribArray(0);
     glEnableVertexAttribArray(1);
-    glEnableVertexAttribArray(2);
     glActiveTexture(GL_TEXTURE0);
 
+    // One pass draws the opaque or the transparent meshes of one face.
+    int pass = 0;
     auto drawMeshes = [&](const Drawn& face, bool transparent) {
         const Gl::Part& part = gl_->overlays[static_cast<std::size_t>(face.selection->overlay)];
-        const Affine model = modelToHead(part.placement, head);
-        Eigen::Matrix4f modelView = Eigen::Matrix4f::Identity();
-        modelView.topLeftCorner<3, 3>() = face.pose.rotation * model.linear;
-        modelView.topRightCorner<3, 1>() =
-            face.pose.rotation * model.translation + face.pose.translation;
-        // Rotation part only: the scale is uniform and the shader normalises.
-        const Eigen::Matrix3f normals = face.pose.rotation * model.linear;
-        glUniformMatrix4fv(gl_->modelView, 1, GL_FALSE, modelView.data());
-        glUniformMatrix3fv(gl_->normalMatrix, 1, GL_FALSE, normals.data());
+        ++pass;
         const float b = face.selection->brightness;
-        glUniform3f(gl_->light, options_.ambient * b, options_.diffuse * b, options_.specular * b);
-        glUniform1f(gl_->alpha, face.selection->alpha);
+        const float fade = face.selection->alpha;
         for (const Gl::Mesh& mesh : part.meshes) {
             if (mesh.material.transparent() != transparent)
                 continue;
+            Gl::Shade& shade = mesh.texture ? gl_->textured : gl_->lit;
+            if (&shade != inUse) {
+                glUseProgram(shade.program.id());
+                if (!mesh.texture)
+                    glDisableVertexAttribArray(2);
+                inUse = &shade;
+            }
+            if (shade.faceUniformsOf != pass) {
+                // Rotation part only: the scale is uniform and the shader normalises.
+                const Eigen::Matrix3f normals = face.modelView.topLeftCorner<3, 3>();
+                glUniformMatrix4fv(shade.modelView, 1, GL_FALSE, face.modelView.data());
+                glUniformMatrix3fv(shade.normalMatrix, 1, GL_FALSE, normals.data());
+                glUniform3f(shade.light, options_.ambient * b, options_.diffuse * b,
+                            options_.specular * b);
+                shade.faceUniformsOf = pass;
+            }
             if (mesh.material.doubleSided)
                 glDisable(GL_CULL_FACE);
             else
                 glEnable(GL_CULL_FACE);
             const auto& c = mesh.material.color;
-            glUniform4f(gl_->color, c[0], c[1], c[2], c[3]);
-            glUniform1f(gl_->shininess, mesh.material.shininess);
-            glUniform1f(gl_->useTexture, mesh.texture ? 1.f : 0.f);
-            glBindTexture(GL_TEXTURE_2D, mesh.texture ? mesh.texture->id() : 0);
-            glBindBuffer(GL_ARRAY_BUFFER, mesh.vertices->id());
-            const auto stride = static_cast<GLsizei>(sizeof(OverlayVertex));
-            glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, stride, nullptr);
-            glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, stride,
-                                  reinterpret_cast<const void*>(3 * sizeof(float)));
-            glVertexAttribPointer(2, 2, GL_FLOAT, GL_FALSE, stride,
-                                  reinterpret_cast<const void*>(6 * sizeof(float)));
-            glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, mesh.indices->id());
+            glUniform4f(shade.color, c[0], c[1], c[2], c[3] * fade);
+            glUniform1f(shade.shininess, mesh.material.shininess);
+            Gl::bindMesh(mesh);
             glDrawElements(GL_TRIANGLES, mesh.count, GL_UNSIGNED_SHORT, nullptr);
         }
     };
 
+    // Opaque surfaces replace the pixels: no blending (it reads every pixel), except in the
+    // colour pass of a face fading in or out. (The states are Gl::prepareShaderVariants'.)
+    glDisable(GL_BLEND);
     for (int i = 0; i < count; ++i) {
         const Drawn& face = drawn[static_cast<std::size_t>(i)];
         if (face.selection->alpha < 1.f) {
@@ -511,13 +781,16 @@ void FaceOverlayLayer::draw(const LayerContext& context) noexcept
             glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
             drawMeshes(face, false);
             glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+            glEnable(GL_BLEND);
             glDepthMask(GL_FALSE);
             drawMeshes(face, false);
             glDepthMask(GL_TRUE);
+            glDisable(GL_BLEND);
         } else {
             drawMeshes(face, false);
         }
     }
+    glEnable(GL_BLEND);
     glDepthMask(GL_FALSE);
     for (int i = 0; i < count; ++i)
         drawMeshes(drawn[static_cast<std::size_t>(i)], true);

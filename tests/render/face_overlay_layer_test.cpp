@@ -17,6 +17,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -314,6 +315,150 @@ TEST_F(FaceOverlayTest, SaysSoWhenTheFramebufferHasNoDepthBuffer)
     EXPECT_NE(std::string(layer.lastError()).find("no depth buffer"), std::string::npos);
 }
 
+// The layer clears only the depth under the overlays when they are small (and the head proxies
+// only write there): whatever earlier frames left elsewhere in the depth buffer must not change a
+// pixel, for small faces (rectangles cleared), a big one (whole buffer cleared), and a far face
+// partly behind a near one (the near head hides the far face's glasses).
+TEST_F(FaceOverlayTest, WhatEarlierFramesLeftInTheDepthBufferChangesNothing)
+{
+    Renderer renderer({kWidth, kHeight}, PixelFormat::RGB24, RendererOptions{true, {}, false});
+    FaceOverlayLayer layer(testCatalogue);
+    renderer.addLayer(&layer);
+    const vision::ImageBuffer video = greyFrame(kWidth, kHeight);
+    const int hat = testCatalogue.find("test_hat");
+    const int glasses = testCatalogue.find("test_glasses");
+
+    auto face = [](int id, float x, float y, float size) {
+        vision::TrackedFace f;
+        f.id = id;
+        f.centre = {x, y};
+        f.size = size;
+        f.state = vision::FaceState::Confirmed;
+        return f;
+    };
+    // Face 2 (smaller: farther) stands behind face 1's head; face 3 is apart.
+    const vision::TrackedFace group[3] = {face(1, 300.f, 260.f, 90.f), face(2, 345.f, 240.f, 55.f),
+                                          face(3, 520.f, 200.f, 60.f)};
+    const vision::TrackedFace close[1] = {face(4, 320.f, 260.f, 260.f)};
+    auto render = [&](std::span<const vision::TrackedFace> faces, float staleDepth, bool proxy) {
+        FaceOverlayOptions options = layer.options();
+        options.headProxy = proxy;
+        layer.setOptions(options);
+        glClearDepthf(staleDepth);
+        glClear(GL_DEPTH_BUFFER_BIT);
+        layer.setFaces(faces);
+        EXPECT_TRUE(renderer.draw(video.view(), kWidth, kHeight, nullptr)) << renderer.lastError();
+        gl.read();
+        return crop(gl, 0, 0, kWidth, kHeight);
+    };
+    auto changed = [&](const std::vector<std::uint8_t>& picture) {
+        int n = 0;
+        for (std::size_t i = 0; i < picture.size(); i += 3)
+            n += picture[i] != 128 || picture[i + 1] != 128 || picture[i + 2] != 128 ? 1 : 0;
+        return n;
+    };
+
+    ASSERT_TRUE(layer.setOverlay(1, hat));
+    ASSERT_TRUE(layer.setOverlay(2, glasses));
+    ASSERT_TRUE(layer.setOverlay(3, hat));
+    ASSERT_TRUE(layer.setOverlay(4, hat));
+    for (const std::span<const vision::TrackedFace> faces :
+         {std::span<const vision::TrackedFace>(group),
+          std::span<const vision::TrackedFace>(close)}) {
+        const std::vector<std::uint8_t> clean = render(faces, 1.f, true);
+        EXPECT_GT(changed(clean), 500) << faces.size() << " faces: the overlays show";
+        EXPECT_TRUE(render(faces, 0.f, true) == clean) << faces.size() << " faces, stale depth 0";
+        EXPECT_TRUE(render(faces, 0.5f, true) == clean) << faces.size() << " faces, depth 0.5";
+    }
+    // Face 1's head hides a lens of face 2's glasses (the lenses make the only blue pixels).
+    auto blue = [](const std::vector<std::uint8_t>& picture) {
+        int n = 0;
+        for (std::size_t i = 0; i < picture.size(); i += 3)
+            n += picture[i + 2] > picture[i] + 25 ? 1 : 0;
+        return n;
+    };
+    const int alone = blue(render({&group[1], 1}, 0.f, true));
+    const int behind = blue(render({group, 2}, 0.f, true));
+    EXPECT_GT(alone, 40);
+    EXPECT_LT(behind, alone * 3 / 4);
+    std::printf("lens pixels of the far face: %d alone, %d behind the near face\n", alone, behind);
+}
+
+// Textured meshes have a program of their own: a textured and an untextured mesh of one
+// overlay, on two faces, all show with their colours.
+TEST_F(FaceOverlayTest, TexturedAndUntexturedMeshesOfOneOverlayBothShow)
+{
+    const std::string dir = testing_support::freshOutputDir("overlay_textured");
+    {
+        std::ofstream(dir + "/catalogue.toml") << R"(version = 1
+[[overlay]]
+name = "card"
+kind = "other"
+anchor = "eye_midpoint"
+measure = "interocular"
+  [[overlay.mesh]]
+  obj = "card.obj"
+  objects = ["picture"]
+  texture = "picture.png"
+  [[overlay.mesh]]
+  obj = "card.obj"
+  objects = ["bar"]
+  color = [0.0, 1.0, 0.0, 1.0]
+)";
+        std::ofstream(dir + "/card.obj") << R"(vn 0 0 1
+vt 0 0
+vt 1 0
+vt 1 1
+vt 0 1
+o picture
+v -1 0.2 0.3
+v 1 0.2 0.3
+v 1 1.2 0.3
+v -1 1.2 0.3
+f 1/1/1 2/2/1 3/3/1 4/4/1
+o bar
+v -1 -1.2 0.3
+v 1 -1.2 0.3
+v 1 -0.2 0.3
+v -1 -0.2 0.3
+f 5//1 6//1 7//1 8//1
+)";
+        // 4x1: red on the left, blue on the right (linear filtering blends only the middle).
+        const std::uint8_t png[12] = {255, 0, 0, 255, 0, 0, 0, 0, 255, 0, 0, 255};
+        ASSERT_TRUE(platform::PngWriter().write((dir + "/picture.png").c_str(), png, 4, 1, 12));
+    }
+    const OverlayCatalogue catalogue = OverlayCatalogue::load(dir + "/catalogue.toml");
+    ASSERT_FALSE(catalogue[0].meshes[0].texture.empty());
+    Renderer renderer({kWidth, kHeight}, PixelFormat::RGB24, RendererOptions{true, {}, false});
+    FaceOverlayLayer layer(catalogue);
+    renderer.addLayer(&layer);
+    const vision::ImageBuffer video = greyFrame(kWidth, kHeight);
+    vision::TrackedFace faces[2] = {centredFace(150.f), centredFace(150.f)};
+    faces[0].centre.x = 170.f;
+    faces[1].centre.x = 470.f;
+    faces[1].id = 8;
+    layer.setFaces(faces);
+    ASSERT_TRUE(layer.setOverlay(faces[0].id, 0));
+    ASSERT_TRUE(layer.setOverlay(faces[1].id, 0));
+    ASSERT_TRUE(renderer.draw(video.view(), kWidth, kHeight, nullptr)) << renderer.lastError();
+    gl.read();
+    for (int half = 0; half < 2; ++half) {
+        int red = 0;
+        int blue = 0;
+        int green = 0;
+        for (int y = 0; y < kHeight; ++y)
+            for (int x = half * kWidth / 2; x < (half + 1) * kWidth / 2; ++x) {
+                const Rgba p = gl.pixel(x, y);
+                red += p.r > 150 && p.g < 60 && p.b < 60 ? 1 : 0;
+                blue += p.b > 150 && p.r < 60 && p.g < 60 ? 1 : 0;
+                green += p.g > 150 && p.r < 60 && p.b < 60 ? 1 : 0;
+            }
+        EXPECT_GT(red, 1000) << "half " << half;
+        EXPECT_GT(blue, 1000) << "half " << half;
+        EXPECT_GT(green, 1000) << "half " << half;
+    }
+}
+
 TEST_F(FaceOverlayTest, DrawingThreeFacesAllocatesNothing)
 {
     Renderer renderer({kWidth, kHeight}, PixelFormat::RGB24, RendererOptions{true, {}, true});
@@ -347,6 +492,42 @@ TEST_F(FaceOverlayTest, DrawingThreeFacesAllocatesNothing)
     EXPECT_TRUE(ok) << renderer.lastError();
     EXPECT_EQ(counts.cxxNew, 0);
     EXPECT_EQ(counts.ownMalloc, 0);
+}
+
+// llvmpipe compiles a shader variant (heap, LLVM) the first time a program is drawn with a new
+// GL state. After the first frame with an overlay (here: a hat fading in), nothing the layer
+// does later may compile one: the fade ending, lenses appearing, faces coming near or going far
+// (whole or scissored depth clears).
+TEST_F(FaceOverlayTest, LaterFramesCompileNoShaderVariant)
+{
+    Renderer renderer({kWidth, kHeight}, PixelFormat::RGB24, RendererOptions{true, {}, false});
+    FaceOverlayLayer layer(testCatalogue);
+    renderer.addLayer(&layer);
+    const vision::ImageBuffer video = greyFrame(kWidth, kHeight);
+    vision::TrackedFace face = centredFace(60.f);
+    layer.setFaces({&face, 1});
+    ASSERT_TRUE(layer.setOverlay(face.id, testCatalogue.find("test_hat"), 0.3f));
+    // Two frames: the renderer's video quad is drawn in the first in GL's initial state.
+    ASSERT_TRUE(renderer.draw(video.view(), kWidth, kHeight, nullptr));
+    ASSERT_TRUE(renderer.draw(video.view(), kWidth, kHeight, nullptr));
+
+    testing_support::AllocationScope scope;
+    bool ok = true;
+    for (const float size : {60.f, 300.f}) {  // small: rectangles cleared; big: all
+        face.size = size;
+        layer.setFaces({&face, 1});
+        ok = layer.setOverlay(face.id, testCatalogue.find("test_hat"), 1.f) && ok;
+        ok = renderer.draw(video.view(), kWidth, kHeight, nullptr) && ok;
+        ok = layer.setOverlay(face.id, testCatalogue.find("test_glasses"), 1.f) && ok;
+        ok = renderer.draw(video.view(), kWidth, kHeight, nullptr) && ok;
+        ok = layer.setOverlay(face.id, testCatalogue.find("test_glasses"), 0.5f) && ok;
+        ok = renderer.draw(video.view(), kWidth, kHeight, nullptr) && ok;
+    }
+    const testing_support::AllocationCounts counts = scope.counts();
+    EXPECT_TRUE(ok) << renderer.lastError();
+    EXPECT_EQ(counts.cxxNew, 0);
+    EXPECT_EQ(counts.ownMalloc, 0);
+    EXPECT_EQ(counts.foreignNew, 0) << "the GL driver compiled a shader variant";
 }
 
 // Every overlay of a catalogue on a real face (IMM 01, frontal), compared with its approved

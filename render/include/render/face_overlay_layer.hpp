@@ -4,15 +4,17 @@
 // depth occlusion by the head.
 //
 // Each draw():
-//  1. clears the depth buffer and draws, for every face that wears an overlay, an invisible head
-//     proxy (HeadModel's rounded box-like ellipsoid) into the depth buffer only (colour writes
-//     off), so the parts of an overlay behind the head (temple arms, the back of a brim) fail the
-//     depth test;
-//  2. draws the opaque meshes of every face, lit per vertex (Gouraud: the meshes are dense, and
-//     software GL pays per fragment) by an ambient and one directional light whose strength
-//     follows the face's brightness; closed meshes with their back faces culled (see
-//     OverlayMaterial::doubleSided); a face fading in or out (alpha < 1) is drawn in two passes
-//     (depth, then colour where the depth is its own) so only its front surface is blended;
+//  1. clears the depth buffer where overlays can land (the window rectangles of their projected
+//     vertices; all of it when those are large) and draws, for every face that wears an overlay,
+//     an invisible head proxy (HeadModel's rounded box-like ellipsoid, its front half) into the
+//     depth buffer only (colour writes off, scissored to those rectangles), so the parts of an
+//     overlay behind the head (temple arms, the back of a brim) fail the depth test;
+//  2. draws the opaque meshes of every face, lit per vertex (Gouraud: the meshes are dense
+//     enough; an untextured mesh gets its whole colour per vertex, so software GL's fragments
+//     only copy it) by an ambient and one directional light whose strength follows the face's
+//     brightness; closed meshes with their back faces culled (see OverlayMaterial::doubleSided);
+//     a face fading in or out (alpha < 1) is drawn in two passes (depth, then colour where the
+//     depth is its own) so only its front surface is blended;
 //  3. draws the transparent meshes (lenses) blended, depth-tested but not depth-writing, far faces
 //     first.
 // The camera is a pinhole with the video's image size and a configurable vertical field of view;
