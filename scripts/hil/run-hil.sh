@@ -11,7 +11,7 @@ here=$(cd "$(dirname "$0")" && pwd)
 
 [ $# -ge 1 ] || { echo "usage: $0 BUILD_DIR" >&2; exit 2; }
 build=$(cd "$1" && pwd)
-timeout_s=${HIL_TIMEOUT:-420}
+timeout_s=${HIL_TIMEOUT:-480}
 
 # The checks the guest runs, in order; each must print "HIL PASS name" (HIL_CHECKS="a b": only
 # those). Without packaging: the devices one by one (cam, gpiomon, a shell on ttyS1) and the
@@ -76,7 +76,7 @@ HIL_ASAN_BIN=$asan_bin
 HIL_CHECKS="$checks"
 HIL_PACKAGE=$package
 HIL_SERVICE_TYPE=${HIL_SERVICE_TYPE:-}
-HIL_FLOOD_BYTES=${HIL_FLOOD_BYTES:-262144}
+HIL_FLOOD_BYTES=${HIL_FLOOD_BYTES:-1048576}
 ENV
 
 # systemd as PID 1 in the guest (HIL_SYSTEMD=0: a plain shell script as init, no units).
