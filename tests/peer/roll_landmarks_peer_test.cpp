@@ -1,18 +1,10 @@
-// Roll by point symmetry on real annotated faces: the IMM face database's frontal photographs
-// (types 1 and 2 of 40 people, 58 landmarks each). Protocol of issue 4's `mirror-eval roll`: a
-// square crop of 3x the eye-to-mouth distance around the face, padded by border replication, is
-// rotated about the face centre by a seeded random angle in [-30, 30] degrees, landmarks with it.
-// Ground-truth roll: the angle between vertical and the best line through the nose tip, the mouth
-// centre and the eye midpoint. Corners: cv::goodFeaturesToTrack in the face box (a stand-in for
-// our own Shi-Tomasi until the face pipeline exists): at most 60 (and, second, 40) corners, none
-// closer than 1/20 of the box side. Also scored: the dissertation's own variant (whole degrees,
-// plain mean, axis through the box centre), its least-squares line-fit baseline, and "upright".
-// The face box comes (a) from cv::CascadeClassifier (haarcascade_frontalface_default) on the
-// rotated crop, faces it misses left out as in the dissertation, and (b) from the landmarks with a
-// seeded detector-like error for every face. The CMU/MIT sets are GIFs, which this OpenCV cannot
-// read, so they wait for mirror-eval.
+// Roll by point symmetry (METHOD.md §4) on the IMM frontal faces rotated under issue 4's
+// `mirror-eval roll` protocol (imm_rotated_faces.hpp). Corners: cv::goodFeaturesToTrack in the
+// face box (a stand-in for our own Shi-Tomasi): at most 60 (and, second, 40) corners, none closer
+// than 1/20 of the box side. Also scored: the dissertation's own variant (whole degrees, plain
+// mean, axis through the box centre), its least-squares line-fit baseline, and "upright".
 
-#include "test_paths.hpp"
+#include "imm_rotated_faces.hpp"
 #include "vision/roll_estimator.hpp"
 
 #include <gtest/gtest.h>
@@ -33,114 +25,7 @@
 
 namespace {
 
-using vision::Point2f;
-
-constexpr double kPi = 3.14159265358979323846;
-
-struct Face {
-    std::string image;
-    std::vector<cv::Point2f> landmarks;  // 58, pixels
-};
-
-/// The 58 landmarks of an IMM .asf file (relative coordinates) in pixels of a w x h image.
-std::vector<cv::Point2f> readAsf(const std::string& path, int width, int height)
-{
-    std::ifstream in(path);
-    std::vector<cv::Point2f> points;
-    std::string line;
-    while (std::getline(in, line)) {
-        if (line.empty() || line[0] == '#')
-            continue;
-        std::istringstream fields(line);
-        int pathIndex = 0, type = 0;
-        double x = 0, y = 0;
-        if (fields >> pathIndex >> type >> x >> y)
-            points.emplace_back(static_cast<float>(x * width), static_cast<float>(y * height));
-    }
-    return points;
-}
-
-std::vector<Face> frontalImmFaces()
-{
-    std::vector<Face> faces;
-    const std::filesystem::path dir = testing_support::sharedData("imm_face_db");
-    std::vector<std::string> names;
-    for (const auto& entry : std::filesystem::directory_iterator(dir)) {
-        const std::string name = entry.path().filename().string();
-        // NN-1m.jpg / NN-2f.jpg: frontal, neutral (1) and "happy" (2); 3-6 turn or light the face.
-        if (entry.path().extension() == ".jpg" && name.size() == 9 &&
-            (name[3] == '1' || name[3] == '2'))
-            names.push_back(entry.path().stem().string());
-    }
-    std::sort(names.begin(), names.end());
-    for (const auto& stem : names) {
-        Face face;
-        face.image = (dir / (stem + ".jpg")).string();
-        face.landmarks = readAsf((dir / (stem + ".asf")).string(), 640, 480);
-        if (face.landmarks.size() == 58)
-            faces.push_back(std::move(face));
-    }
-    return faces;
-}
-
-cv::Point2f mean(const std::vector<cv::Point2f>& p, int first, int last)
-{
-    cv::Point2f sum(0.f, 0.f);
-    for (int i = first; i <= last; ++i)
-        sum += p[static_cast<std::size_t>(i)];
-    return sum * (1.f / static_cast<float>(last - first + 1));
-}
-
-/// Eye midpoint, nose tip, mouth centre of the IMM markup (eyes 13-20 and 21-28, mouth 39-46,
-/// nose 47-57 with its lowest centre point 52).
-std::array<cv::Point2f, 3> axisPoints(const std::vector<cv::Point2f>& p)
-{
-    const cv::Point2f eyes = 0.5f * (mean(p, 13, 20) + mean(p, 21, 28));
-    return {eyes, p[52], mean(p, 39, 46)};
-}
-
-/// Roll (our sign: clockwise on screen positive) of the best line through the axis points.
-double truthRoll(const std::array<cv::Point2f, 3>& a)
-{
-    std::vector<Point2f> points;
-    for (const auto& p : a)
-        points.push_back({p.x, p.y});
-    // The principal direction of three nearly collinear points; the line fit folds it into
-    // +-45 degrees of horizontal, and a face's vertical axis is +-45 of vertical, so both agree.
-    double roll = vision::estimateRollByLineFit(points).rollDegrees;
-    // Sign check against the eye-to-mouth direction: for a face rolled clockwise by r the
-    // direction (eyes -> mouth) is (-sin r, cos r).
-    const cv::Point2f down = a[2] - a[0];
-    const double fromVertical = std::atan2(-down.x, down.y) * 180.0 / kPi;
-    if (std::fabs(fromVertical - roll) > 45.0)
-        roll = fromVertical;  // degenerate fit; use the two-point axis
-    return roll;
-}
-
-/// Absolute roll errors (degrees) of one estimator configuration.
-struct Errors {
-    const char* name;
-    std::vector<double> values;
-
-    double mean() const
-    {
-        double sum = 0;
-        for (double x : values)
-            sum += x;
-        return values.empty() ? 0.0 : sum / static_cast<double>(values.size());
-    }
-    double within(double limit) const
-    {
-        const auto n =
-            std::count_if(values.begin(), values.end(), [&](double x) { return x <= limit; });
-        return values.empty() ? 0.0 : static_cast<double>(n) / static_cast<double>(values.size());
-    }
-    void report(const char* boxes) const
-    {
-        std::printf("roll %s %s: faces=%zu mean_err_deg=%.2f within1=%.0f%% within5=%.0f%%\n",
-                    boxes, name, values.size(), mean(), 100.0 * within(1.0), 100.0 * within(5.0));
-    }
-};
+using namespace imm_rotated_faces;
 
 /// Every configuration on one set of face boxes.
 struct Results {
@@ -196,61 +81,23 @@ void estimate(const cv::Mat& gray, cv::Rect box, double truth, Results& results)
 
 TEST(RollLandmarksPeer, ImmFrontalFacesRotatedUpTo30Degrees)
 {
-    const auto faces = frontalImmFaces();
-    ASSERT_EQ(faces.size(), 80u) << "IMM frontal faces (types 1 and 2) not found";
-    cv::CascadeClassifier cascade(
-        "/usr/share/opencv4/haarcascades/haarcascade_frontalface_default.xml");
-    ASSERT_FALSE(cascade.empty());
-
-    std::mt19937 rng(2006);
-    std::uniform_real_distribution<double> angle(-30.0, 30.0);
-    std::uniform_real_distribution<double> jitter(-0.05, 0.05);
+    const auto samples = rotatedSamples(2006u, false);
+    ASSERT_EQ(samples.size(), 80u) << "IMM frontal faces (types 1 and 2) not found";
     Results detected, fromLandmarks;
     int missed = 0;
-    for (const auto& face : faces) {
-        const cv::Mat gray = cv::imread(face.image, cv::IMREAD_GRAYSCALE);
-        ASSERT_FALSE(gray.empty()) << face.image;
-        const auto axis = axisPoints(face.landmarks);
-        const cv::Point2f centre = 0.5f * (axis[0] + axis[2]);
-        const double eyeMouth = cv::norm(axis[2] - axis[0]);
-        const int side = static_cast<int>(std::lround(3.0 * eyeMouth));
-        const double rotation = angle(rng);
-
-        // Our positive roll is clockwise on screen; OpenCV's positive angle is anticlockwise.
-        cv::Mat m = cv::getRotationMatrix2D(centre, -rotation, 1.0);
-        m.at<double>(0, 2) += 0.5 * (side - 1) - centre.x;
-        m.at<double>(1, 2) += 0.5 * (side - 1) - centre.y;
-        cv::Mat crop;
-        cv::warpAffine(gray, crop, m, cv::Size(side, side), cv::INTER_LINEAR, cv::BORDER_REPLICATE);
-        std::vector<cv::Point2f> moved;
-        cv::transform(std::vector<cv::Point2f>(axis.begin(), axis.end()), moved, m);
-        const std::array<cv::Point2f, 3> rotated = {moved[0], moved[1], moved[2]};
-        const double truth = truthRoll(rotated);
-        EXPECT_NEAR(truth, truthRoll(axis) + rotation, 1e-3);
-
+    for (const Sample& s : samples) {
+        // Our positive roll is clockwise on screen, as the crop was turned.
+        EXPECT_NEAR(s.truth, s.uprightTruth + s.rotation, 1e-3);
         // (a) the cascade's box holding the eye midpoint and mouth centre, if it finds one.
-        std::vector<cv::Rect> boxes;
-        cascade.detectMultiScale(crop, boxes, 1.1, 3, 0, cv::Size(side / 4, side / 4));
-        const auto hit = std::find_if(boxes.begin(), boxes.end(), [&](const cv::Rect& b) {
-            return b.contains(rotated[0]) && b.contains(rotated[2]);
-        });
-        if (hit != boxes.end())
-            estimate(crop, *hit, truth, detected);
+        if (s.detected)
+            estimate(s.crop, s.cascadeBox, s.truth, detected);
         else
             ++missed;
-
         // (b) every face: a square of 2.2x the eye-mouth distance about the face centre, off by up
         // to 5% of its size each way as a detector's box would be.
-        const double size = 2.2 * eyeMouth;
-        const double cx = 0.5 * (side - 1) + jitter(rng) * size;
-        const double cy = 0.5 * (side - 1) + jitter(rng) * size;
-        const cv::Rect box(static_cast<int>(std::lround(cx - 0.5 * size)),
-                           static_cast<int>(std::lround(cy - 0.5 * size)),
-                           static_cast<int>(std::lround(size)),
-                           static_cast<int>(std::lround(size)));
-        estimate(crop, box, truth, fromLandmarks);
+        estimate(s.crop, s.landmarkBox, s.truth, fromLandmarks);
     }
-    std::printf("roll: cascade missed %d of %zu rotated faces\n", missed, faces.size());
+    std::printf("roll: cascade missed %d of %zu rotated faces\n", missed, samples.size());
     detected.report("cascade-box");
     fromLandmarks.report("landmark-box");
 
