@@ -1,12 +1,12 @@
 #include "firmware/card_model_store.hpp"
 
 #include "atomic_file.hpp"
+#include "state_file.hpp"
 
 #include <toml++/toml.h>
 
 #include <cmath>
 #include <cstdio>
-#include <filesystem>
 
 namespace firmware {
 
@@ -32,39 +32,24 @@ bool readTriple(const toml::table& table, const char* key, float out[3], float l
 CardModelStore::CardModelStore(const std::string& stateDir)
     : dir_(stateDir), path_(stateDir + "/card-model.toml"), tempPath_(path_ + ".tmp")
 {
-    std::error_code ec;
-    std::filesystem::create_directories(dir_, ec);
-    if (ec) {
-        std::snprintf(error_, sizeof error_, "state folder %s: %s", dir_.c_str(),
-                      ec.message().c_str());
-        return;
-    }
-    usable_ = true;
+    usable_ = createStateFolder(dir_, error_, sizeof error_);
 }
 
 std::optional<vision::CardColorModel> CardModelStore::load(std::string& warning) const
 {
-    warning.clear();
-    std::error_code ec;
-    if (!std::filesystem::exists(path_, ec))
+    const std::optional<toml::table> parsed = readStateToml(path_, warning);
+    if (!parsed)
         return std::nullopt;
-    try {
-        const toml::table table = toml::parse_file(path_);
-        vision::CardColorModel model;
-        if (!readTriple(table, "mean", model.mean, 0.f, 255.f) ||
-            !readTriple(table, "sigma", model.sigma, 0.f, 255.f)) {
-            warning =
-                path_ + ": not a card model (needs mean and sigma, 3 numbers 0..255 each); ignored";
-            return std::nullopt;
-        }
-        model.valid = true;
-        return model;
-    } catch (const toml::parse_error& e) {
-        warning = path_ + ":" + std::to_string(e.source().begin.line) + ":" +
-                  std::to_string(e.source().begin.column) + ": " + std::string(e.description()) +
-                  "; ignored";
+    const toml::table& table = *parsed;
+    vision::CardColorModel model;
+    if (!readTriple(table, "mean", model.mean, 0.f, 255.f) ||
+        !readTriple(table, "sigma", model.sigma, 0.f, 255.f)) {
+        warning =
+            path_ + ": not a card model (needs mean and sigma, 3 numbers 0..255 each); ignored";
         return std::nullopt;
     }
+    model.valid = true;
+    return model;
 }
 
 bool CardModelStore::save(const vision::CardColorModel& model) noexcept

@@ -1,12 +1,12 @@
 #include "firmware/overlay_state_store.hpp"
 
 #include "atomic_file.hpp"
+#include "state_file.hpp"
 
 #include <toml++/toml.h>
 
 #include <algorithm>
 #include <cstdio>
-#include <filesystem>
 
 namespace firmware {
 
@@ -23,43 +23,28 @@ bool isControl(char c)
 OverlayStateStore::OverlayStateStore(const std::string& stateDir)
     : dir_(stateDir), path_(stateDir + "/overlay.toml"), tempPath_(path_ + ".tmp")
 {
-    std::error_code ec;
-    std::filesystem::create_directories(dir_, ec);
-    if (ec) {
-        std::snprintf(error_, sizeof error_, "state folder %s: %s", dir_.c_str(),
-                      ec.message().c_str());
-        return;
-    }
-    usable_ = true;
+    usable_ = createStateFolder(dir_, error_, sizeof error_);
 }
 
 std::optional<OverlayState> OverlayStateStore::load(std::string& warning) const
 {
-    warning.clear();
-    std::error_code ec;
-    if (!std::filesystem::exists(path_, ec))
+    const std::optional<toml::table> parsed = readStateToml(path_, warning);
+    if (!parsed)
         return std::nullopt;
-    try {
-        const toml::table table = toml::parse_file(path_);
-        const std::optional<std::string> overlay = table["overlay"].value<std::string>();
-        const std::optional<std::string> modeText = table["mode"].value<std::string>();
-        OverlayState state;
-        const bool nameOk = overlay && !overlay->empty() && overlay->size() <= kMaxNameLength &&
-                            std::none_of(overlay->begin(), overlay->end(), isControl);
-        if (!nameOk || !modeText || !parseOverlayMode(*modeText, state.mode)) {
-            warning = path_ +
-                      ": not an overlay state (needs overlay = \"NAME\" and mode = \"global\" or "
-                      "\"per_face\"); ignored";
-            return std::nullopt;
-        }
-        state.overlay = *overlay;
-        return state;
-    } catch (const toml::parse_error& e) {
-        warning = path_ + ":" + std::to_string(e.source().begin.line) + ":" +
-                  std::to_string(e.source().begin.column) + ": " + std::string(e.description()) +
-                  "; ignored";
+    const toml::table& table = *parsed;
+    const std::optional<std::string> overlay = table["overlay"].value<std::string>();
+    const std::optional<std::string> modeText = table["mode"].value<std::string>();
+    OverlayState state;
+    const bool nameOk = overlay && !overlay->empty() && overlay->size() <= kMaxNameLength &&
+                        std::none_of(overlay->begin(), overlay->end(), isControl);
+    if (!nameOk || !modeText || !parseOverlayMode(*modeText, state.mode)) {
+        warning = path_ +
+                  ": not an overlay state (needs overlay = \"NAME\" and mode = \"global\" or "
+                  "\"per_face\"); ignored";
         return std::nullopt;
     }
+    state.overlay = *overlay;
+    return state;
 }
 
 bool OverlayStateStore::save(std::string_view overlay, OverlayMode mode) noexcept
