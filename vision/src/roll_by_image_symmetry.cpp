@@ -3,6 +3,7 @@
 
 #include "vision/roll_by_image_symmetry.hpp"
 
+#include "golden_section.hpp"
 #include "vision/upright_patch.hpp"
 
 #include <algorithm>
@@ -244,27 +245,11 @@ float RollByImageSymmetry::bestOverOffsets(bool continuous) noexcept
         }
     }
     if (continuous && maxShift_ > 0) {
-        constexpr float kInvPhi = 0.6180339887f;
-        float lo = std::max(centre2 - static_cast<float>(maxShift_), bestA2 - 1.f);
-        float hi = std::min(centre2 + static_cast<float>(maxShift_), bestA2 + 1.f);
-        float a = hi - kInvPhi * (hi - lo), b = lo + kInvPhi * (hi - lo);
-        float fa = asymmetryAbout(a), fb = asymmetryAbout(b);
-        while (hi - lo > 0.05f) {
-            if (fa <= fb) {
-                hi = b;
-                b = a;
-                fb = fa;
-                a = hi - kInvPhi * (hi - lo);
-                fa = asymmetryAbout(a);
-            } else {
-                lo = a;
-                a = b;
-                fa = fb;
-                b = lo + kInvPhi * (hi - lo);
-                fb = asymmetryAbout(b);
-            }
-        }
-        best = std::min({best, fa, fb});
+        const GoldenSectionBracket g =
+            goldenSection(std::max(centre2 - static_cast<float>(maxShift_), bestA2 - 1.f),
+                          std::min(centre2 + static_cast<float>(maxShift_), bestA2 + 1.f), 0.05f,
+                          [this](float a2) { return asymmetryAbout(a2); });
+        best = std::min({best, g.fa, g.fb});
     }
     return std::isfinite(best) ? best : 1.f;
 }
@@ -372,28 +357,11 @@ RollEstimate RollByImageSymmetry::estimate(const ConstImageView& gray, Point2f c
     // Golden section between the neighbouring coarse angles; kept only when it scores at least
     // as well as the coarse best.
     if (o.refineToleranceDegrees > 0.f && count > 1) {
-        constexpr float kInvPhi = 0.6180339887f;
-        float lo = std::max(o.minDegrees, bestDegrees - o.coarseStepDegrees);
-        float hi = std::min(o.maxDegrees, bestDegrees + o.coarseStepDegrees);
-        float a = hi - kInvPhi * (hi - lo), b = lo + kInvPhi * (hi - lo);
-        float fa = scoreAngle(gray, centre, boxSize, a, true);
-        float fb = scoreAngle(gray, centre, boxSize, b, true);
-        for (int iter = 0; iter < 40 && hi - lo > o.refineToleranceDegrees; ++iter) {
-            if (fa <= fb) {
-                hi = b;
-                b = a;
-                fb = fa;
-                a = hi - kInvPhi * (hi - lo);
-                fa = scoreAngle(gray, centre, boxSize, a, true);
-            } else {
-                lo = a;
-                a = b;
-                fa = fb;
-                b = lo + kInvPhi * (hi - lo);
-                fb = scoreAngle(gray, centre, boxSize, b, true);
-            }
-        }
-        const float mid = 0.5f * (lo + hi);
+        const GoldenSectionBracket g = goldenSection(
+            std::max(o.minDegrees, bestDegrees - o.coarseStepDegrees),
+            std::min(o.maxDegrees, bestDegrees + o.coarseStepDegrees), o.refineToleranceDegrees,
+            [&](float degrees) { return scoreAngle(gray, centre, boxSize, degrees, true); }, 40);
+        const float mid = 0.5f * (g.lo + g.hi);
         const float fmid = scoreAngle(gray, centre, boxSize, mid, true);
         if (fmid >= 0.f && fmid <= bestScore) {
             bestDegrees = mid;

@@ -1,5 +1,7 @@
 #include "vision/roll_estimator.hpp"
 
+#include "golden_section.hpp"
+
 #include <algorithm>
 #include <cmath>
 
@@ -128,27 +130,11 @@ RollEstimate estimateRollBySymmetry(std::span<const Point2f> points, Point2f cen
     // parabola through three samples would be biased towards the whole step; golden section is
     // not. The result is kept only when it scores at least as well as the whole step.
     if (options.refineToleranceDegrees > 0.f && count > 1) {
-        constexpr float kInvPhi = 0.6180339887f;
-        float lo = std::max(options.minDegrees, bestDegrees - step);
-        float hi = std::min(options.maxDegrees, bestDegrees + step);
-        float a = hi - kInvPhi * (hi - lo), b = lo + kInvPhi * (hi - lo);
-        float fa = score(a), fb = score(b);
-        for (int iter = 0; iter < 40 && hi - lo > options.refineToleranceDegrees; ++iter) {
-            if (fa <= fb) {
-                hi = b;
-                b = a;
-                fb = fa;
-                a = hi - kInvPhi * (hi - lo);
-                fa = score(a);
-            } else {
-                lo = a;
-                a = b;
-                fa = fb;
-                b = lo + kInvPhi * (hi - lo);
-                fb = score(b);
-            }
-        }
-        const float mid = 0.5f * (lo + hi);
+        const GoldenSectionBracket g =
+            goldenSection(std::max(options.minDegrees, bestDegrees - step),
+                          std::min(options.maxDegrees, bestDegrees + step),
+                          options.refineToleranceDegrees, score, 40);
+        const float mid = 0.5f * (g.lo + g.hi);
         const float fmid = score(mid);
         if (fmid <= bestScore) {
             bestDegrees = mid;
