@@ -21,18 +21,18 @@ bool warpUpright(const ConstImageView& gray, Point2f centre, float rollDegrees, 
 {
     if (patch.empty() || !(sourceSide > 0.0f) || !std::isfinite(sourceSide))
         return false;
-    return warpRotated(gray, centre, rollDegrees, sourceSide / static_cast<float>(patch.width),
-                       sourceSide / static_cast<float>(patch.height), patch);
+    return warpRotated(gray, centre, rollDegrees, static_cast<double>(sourceSide) / patch.width,
+                       static_cast<double>(sourceSide) / patch.height, patch);
 }
 
-bool warpRotated(const ConstImageView& gray, Point2f centre, float rollDegrees, float unitXf,
-                 float unitYf, ImageView patch) noexcept
+bool warpRotated(const ConstImageView& gray, Point2f centre, float rollDegrees, double unitX,
+                 double unitY, ImageView patch) noexcept
 {
     if (gray.empty() || gray.format != PixelFormat::Gray8 || patch.empty() ||
         patch.format != PixelFormat::Gray8) {
         return false;
     }
-    if (!(unitXf > 0.0f) || !(unitYf > 0.0f) || !std::isfinite(unitXf) || !std::isfinite(unitYf) ||
+    if (!(unitX > 0.0) || !(unitY > 0.0) || !std::isfinite(unitX) || !std::isfinite(unitY) ||
         !std::isfinite(rollDegrees) || !std::isfinite(centre.x) || !std::isfinite(centre.y)) {
         return false;
     }
@@ -40,8 +40,6 @@ bool warpRotated(const ConstImageView& gray, Point2f centre, float rollDegrees, 
     const double c = std::cos(rad);
     const double s = std::sin(rad);
     // One patch pixel is `unit` source pixels along the rotated axes.
-    const double unitX = unitXf;
-    const double unitY = unitYf;
     // Source position (in pixel-centre coordinates: minus 0.5) of patch pixel (0, 0)'s centre,
     // and the steps along a patch row (u) and down a column (v).
     const double u0 = (0.5 - 0.5 * patch.width) * unitX;

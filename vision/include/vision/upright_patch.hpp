@@ -25,8 +25,9 @@ bool warpUpright(const ConstImageView& gray, Point2f centre, float rollDegrees, 
 /// along the rotated axes, so patch offset (u, v) from the patch centre reads the image at
 /// centre + R(roll) (u * unitX, v * unitY). warpUpright is unitX = sourceSide / patch.width,
 /// unitY = sourceSide / patch.height. Same sampling, border and failure rules (non-positive or
-/// non-finite units).
-bool warpRotated(const ConstImageView& gray, Point2f centre, float rollDegrees, float unitX,
-                 float unitY, ImageView patch) noexcept;
+/// non-finite units). The units are double so that warpUpright's sourceSide / patch side is
+/// not rounded to float on the way.
+bool warpRotated(const ConstImageView& gray, Point2f centre, float rollDegrees, double unitX,
+                 double unitY, ImageView patch) noexcept;
 
 }  // namespace vision
