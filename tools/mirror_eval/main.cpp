@@ -130,6 +130,10 @@ int main(int argc, char** argv)
     trackCmd->add_option("--min-size", track.minSize, "detector min face side, working pixels")
         ->capture_default_str();
     trackCmd->add_option("--min-iou", track.minIou, "IoU a match needs")->capture_default_str();
+    trackCmd
+        ->add_option("--budget", track.budget,
+                     "detector windows per frame, 0: whole scans (the mirror ships 5000)")
+        ->capture_default_str();
     trackCmd->add_option("--max-frames", track.maxFrames, "only the first N frames (0: all)");
     trackCmd->add_flag("--per-frame", track.perFrame, "print every frame's faces and truth");
 
