@@ -49,6 +49,15 @@ constexpr float kVerifyRollStep = 12.f;
 constexpr int kSettleFrames = 5;
 /// Fraction of a young track's corners that must follow its motion fit for the motion to count.
 constexpr float kCoherentFraction = 0.85f;
+/// Fraction of a track's corners that must each move along its shift (by half of it at least)
+/// for the shift to count as the face moving.
+constexpr float kMovedAsOneFraction = 0.75f;
+/// A Tentative face whose tracked roll turned this far since it started is checked for turning
+/// in the image (and again after each further step as far).
+constexpr float kTurnCheckDegrees = 4.f;
+/// Fraction of a track's corners that must survive a flow step for the face to count as held
+/// by them (the longer grace of FaceTrackerOptions::occludedGraceFrames).
+constexpr float kHeldFraction = 0.8f;
 
 /// The rotated image of a w x h image, turned by `degrees`, fits in this box (plus a margin).
 Size rotatedCanvas(Size s, float degrees) noexcept
@@ -76,11 +85,21 @@ struct Track {
     Point2f lastCentre{};
     int verifiedSinceAnchor = 0;
     bool detectedThisFrame = false;
+    /// The last flow step kept most of the corners on one rigid motion: the face is still
+    /// there, whatever the cascade says (a hand or another head over part of it, a turned head).
+    bool heldByCorners = false;
     /// Started by a tilted scan's hit: until shown, only the motion of its corners (`path`)
     /// shows it moves, not the motion mask. The turned regions offer the cascade more windows,
     /// hence more chance hits on still faces, and a changing light can fill a still face's box
     /// with foreground.
     bool tiltFound = false;
+    /// How far its roll turned since it started, by flow steps that moved all of the face
+    /// (movedAsOne), and (when confident) the image symmetry's roll at the start: a face turning
+    /// in place shows it moves when the image agrees it turned (turnedInImage).
+    float turn = 0.f;
+    float imageRollAtStart = 0.f;
+    bool haveImageRollAtStart = false;
+    float rollChecked = 0.f;  ///< the tracked turn at the last such check
 };
 
 struct RecentArea {
@@ -160,6 +179,8 @@ void validate(const FaceTrackerOptions& o)
         throw std::runtime_error("FaceTracker: maxFaces must be 1..32");
     if (o.confirmFrames < 1 || o.graceFrames < 0)
         throw std::runtime_error("FaceTracker: confirmFrames must be >= 1 and graceFrames >= 0");
+    if (o.occludedGraceFrames < 0)
+        throw std::runtime_error("FaceTracker: occludedGraceFrames must be >= 0");
     if (o.maxCornersPerFace < 4 || o.maxCornersPerFace > kMaxPoints)
         throw std::runtime_error("FaceTracker: maxCornersPerFace must be 4..64");
     if (o.minCornersPerFace < 3 || o.minCornersPerFace > o.maxCornersPerFace)
@@ -219,9 +240,11 @@ struct FaceTracker::Impl {
     bool process(const ConstImageView& gray, const ConstImageView& mask,
                  const IntegralImage* maskIntegral) noexcept;
     void trackPoints(Track& t) noexcept;
+    bool movedAsOne(int m, const MotionModel& model) const noexcept;
     void findCorners(Track& t, bool replenish) noexcept;
     void startTrack(Rect box, float rollHint) noexcept;
-    float initialRoll(const Track& t, float rollHint) noexcept;
+    float initialRoll(Track& t, float rollHint) noexcept;
+    bool turnedInImage(Track& t) noexcept;
     bool chooseTiltRegion() noexcept;
     long tiltScanStep(long budget) noexcept;
     void correctRoll(Track& t) noexcept;
@@ -252,6 +275,12 @@ struct FaceTracker::Impl {
     int trackCount = 0;
     int nextId = 1;
     int frameIndex = 0;
+    /// Until the first scan after construction or reset() completes, or the motion mask first
+    /// marks something, the whole image is scanned: nothing is known yet of what moves (a motion
+    /// model that has seen one frame marks nothing), so every face is found and the static rule
+    /// (step 5) tells still from moving. A scan spread over frames by the window budget goes on
+    /// masked once there is motion (a whole-image scan would keep a moving face waiting).
+    bool coldStart = true;
     std::array<RecentArea, kMaxRecent> recent{};
 
     std::vector<TrackedFace> outFaces;
@@ -311,6 +340,11 @@ void FaceTracker::Impl::prepareScanMask(const ConstImageView& mask) noexcept
     // 3 "Detection": scan where there is motion, or where a face was seen recently (a face that
     // stops moving for a moment must still be found again).
     const Size s = options.imageSize;
+    if (coldStart) {
+        std::memset(scanMask.view().data, 255, scanMask.bytes());
+        scanMaskIntegral.compute(scanMask.view());
+        return;
+    }
     for (int y = 0; y < s.height; ++y)
         std::memcpy(scanMask.view().row(y), mask.row(y), static_cast<std::size_t>(s.width));
     for (RecentArea& a : recent) {
@@ -374,6 +408,8 @@ void FaceTracker::Impl::trackPoints(Track& t) noexcept
                                                   options.fit, model, inliers.data())
                                 : 0;
     const float survived = n > 0 ? static_cast<float>(in) / static_cast<float>(n) : 0.f;
+    t.heldByCorners =
+        in >= std::max(minimum, options.minCornersPerFace / 2) && survived >= kHeldFraction;
     if (in < minimum) {
         // Nothing reliable moved: keep the box where it was, start the corners afresh.
         t.pointCount = 0;
@@ -385,7 +421,8 @@ void FaceTracker::Impl::trackPoints(Track& t) noexcept
     // A young track's box may hold some background or a passing head, whose motion the fit
     // can follow: its shifts count only when nearly all of its corners agree with them.
     const bool coherent = t.face.age >= kSettleFrames || survived >= kCoherentFraction;
-    if (shift > kStillShift && coherent)
+    const bool asOne = coherent && movedAsOne(m, model);
+    if (shift > kStillShift && asOne)
         t.path += shift;
     t.face.centre = moved;
     if (options.mode != FaceTrackingMode::Translation) {
@@ -395,6 +432,8 @@ void FaceTracker::Impl::trackPoints(Track& t) noexcept
         const float s = std::clamp(model.scale(), 0.95f, 1.05f);
         t.face.size *= s;
         t.face.rollDegrees += model.roll() * kRadToDeg;
+        if (asOne)
+            t.turn += model.roll() * kRadToDeg;
         t.face.rollDegrees = std::clamp(t.face.rollDegrees, -60.f, 60.f);
     }
     int k = 0;
@@ -403,6 +442,34 @@ void FaceTracker::Impl::trackPoints(Track& t) noexcept
             t.points[static_cast<std::size_t>(k++)] = to[static_cast<std::size_t>(i)];
     t.pointCount = k;
     t.face.confidence = std::min(1.f, survived);
+}
+
+bool FaceTracker::Impl::movedAsOne(int m, const MotionModel& model) const noexcept
+{
+    // A still face beside a moving one (a photo on the wall as someone passes it) has its fit
+    // pulled along by the corners nearest the passer-by, whose flow windows hold part of them:
+    // a robust fit keeps them all as inliers, yet only those few moved. A face that moves (or
+    // turns) moves all its corners as the fit says (measured: 93-100% of them, against 25-36%
+    // for a photo beside a passing head). Corners the fit hardly moves (near the centre of a
+    // turn) say nothing.
+    int along = 0, counted = 0;
+    for (int i = 0; i < m; ++i) {
+        if (!inliers[static_cast<std::size_t>(i)])
+            continue;
+        const Point2f a = from[static_cast<std::size_t>(i)];
+        const Point2f b = to[static_cast<std::size_t>(i)];
+        const Point2f p = model.apply(a);
+        const float dx = p.x - a.x;
+        const float dy = p.y - a.y;
+        const float d2 = dx * dx + dy * dy;
+        if (d2 < kStillShift * kStillShift * 0.25f)
+            continue;
+        // (b - a) . d >= |d|^2 / 2: moved along the fit by at least half of it.
+        along += (b.x - a.x) * dx + (b.y - a.y) * dy >= 0.5f * d2;
+        ++counted;
+    }
+    return counted > 0 &&
+           static_cast<float>(along) >= kMovedAsOneFraction * static_cast<float>(counted);
 }
 
 bool FaceTracker::Impl::verifyTrack(Track& t) noexcept
@@ -481,7 +548,7 @@ bool FaceTracker::Impl::verifyAt(Track& t, float roll) noexcept
     return true;
 }
 
-float FaceTracker::Impl::initialRoll(const Track& t, float rollHint) noexcept
+float FaceTracker::Impl::initialRoll(Track& t, float rollHint) noexcept
 {
     // Beyond 5.2: the dense symmetry of the face image, which holds on small faces whose corner
     // sets are not symmetric; the corners' point symmetry (5.2) when it has no answer.
@@ -489,8 +556,11 @@ float FaceTracker::Impl::initialRoll(const Track& t, float rollHint) noexcept
         const RollEstimate r =
             imageRoll->estimate(grays[current].view(), t.face.centre, t.face.size);
         if (r.confidence >= kMinImageRollConfidence &&
-            (rollHint == 0.f || std::fabs(r.rollDegrees - rollHint) <= 20.f))
+            (rollHint == 0.f || std::fabs(r.rollDegrees - rollHint) <= 20.f)) {
+            t.imageRollAtStart = r.rollDegrees;
+            t.haveImageRollAtStart = true;
             return r.rollDegrees;
+        }
     }
     // A tilted scan's hit: the face is within the cascade's reach of the scan's angle.
     if (rollHint != 0.f)
@@ -502,6 +572,25 @@ float FaceTracker::Impl::initialRoll(const Track& t, float rollHint) noexcept
         std::span<const Point2f>(rollPoints.data(), static_cast<std::size_t>(n)), t.face.centre,
         t.face.size);
     return r.confidence > 0.f ? r.rollDegrees : 0.f;
+}
+
+bool FaceTracker::Impl::turnedInImage(Track& t) noexcept
+{
+    // A face turning about its own centre (a head tilting from side to side) hardly moves its
+    // centre, so `path` misses it. Its tracked roll does turn, but corners near a face moving past
+    // a still one can turn that one's fit too (the edge of the passer-by uncovers and covers it):
+    // the turn counts only when the image's symmetry, measured afresh, turned the same way.
+    if (!imageRoll || !t.haveImageRollAtStart || options.mode == FaceTrackingMode::Translation)
+        return false;
+    const float turned = t.turn;
+    if (std::fabs(turned) < std::fabs(t.rollChecked) + kTurnCheckDegrees)
+        return false;
+    t.rollChecked = turned;
+    const RollEstimate r = imageRoll->estimate(grays[current].view(), t.face.centre, t.face.size);
+    if (r.confidence < kMinImageRollConfidence)
+        return false;
+    const float seen = r.rollDegrees - t.imageRollAtStart;
+    return seen * turned > 0.f && std::fabs(seen) >= 0.5f * kTurnCheckDegrees;
 }
 
 void FaceTracker::Impl::correctRoll(Track& t) noexcept
@@ -734,6 +823,7 @@ bool FaceTracker::Impl::process(const ConstImageView& gray, const ConstImageView
     for (int i = 0; i < trackCount; ++i) {
         Track& t = tracks[static_cast<std::size_t>(i)];
         t.detectedThisFrame = false;
+        t.heldByCorners = false;
         ++t.face.age;
         if (options.mode != FaceTrackingMode::None && havePrevious)
             trackPoints(t);
@@ -762,13 +852,19 @@ bool FaceTracker::Impl::process(const ConstImageView& gray, const ConstImageView
                 tracks[static_cast<std::size_t>(i)].face.box();
     const std::span<const Rect> exclude(excluded.data(), static_cast<std::size_t>(excludedCount));
     int detected = 0;
+    if (coldStart && haveMotion && motion->sum(0, 0, s.width, s.height) > 0)
+        coldStart = false;
+    const bool cold = coldStart;
     if (haveMotion)
         prepareScanMask(mask);
+    // A cold start's scan is not spread over frames: the faces in view when the mirror starts
+    // (or its camera comes back) are all found in that one frame, which may take longer.
+    const long budget = cold ? 0 : options.detectionWindowBudget;
     if (options.detectionWindowBudget > 0) {
         // The scan spread over frames: faces() holds a result only when a scan completes.
-        scanDone = scan.detectMaskedIncremental(
-            grays[current].view(), haveMotion ? &scanMaskIntegral : nullptr,
-            options.minMaskFraction, exclude, options.detectionWindowBudget);
+        scanDone = scan.detectMaskedIncremental(grays[current].view(),
+                                                haveMotion ? &scanMaskIntegral : nullptr,
+                                                options.minMaskFraction, exclude, budget);
         detected = scanDone ? static_cast<int>(scan.faces().size()) : 0;
     } else if (haveMotion) {
         detected = scan.detectMasked(grays[current].view(), scanMaskIntegral,
@@ -785,6 +881,7 @@ bool FaceTracker::Impl::process(const ConstImageView& gray, const ConstImageView
     }
     windows += scan.windowsEvaluated();
     if (scanDone) {
+        coldStart = false;
         uprightCount = std::min(detected, static_cast<int>(uprightHits.size()));
         for (int d = 0; d < uprightCount; ++d)
             uprightHits[static_cast<std::size_t>(d)] = scan.faces()[static_cast<std::size_t>(d)];
@@ -792,10 +889,12 @@ bool FaceTracker::Impl::process(const ConstImageView& gray, const ConstImageView
     // Tilted scans of the moving regions no track covers, with what the budget left.
     tiltDone = false;
     if (tiltScan && haveMotion && options.mode != FaceTrackingMode::None) {
-        long left = options.tiltWindowBudget > 0 ? options.tiltWindowBudget
-                                                 : std::numeric_limits<long>::max();
-        if (options.detectionWindowBudget > 0)
-            left = std::min(left, options.detectionWindowBudget - scan.windowsEvaluated());
+        // A cold start's tilted scans cover the whole image once, as its upright scan does, in
+        // its frame.
+        long left = options.tiltWindowBudget > 0 && !cold ? options.tiltWindowBudget
+                                                          : std::numeric_limits<long>::max();
+        if (budget > 0)
+            left = std::min(left, budget - scan.windowsEvaluated());
         // One angle after the other while the budget lasts (both in a frame when it allows).
         for (int k = 0; k < 2 && left > 0; ++k) {
             const bool unlimited = left == std::numeric_limits<long>::max();
@@ -890,10 +989,11 @@ bool FaceTracker::Impl::process(const ConstImageView& gray, const ConstImageView
         }
         if (options.mode == FaceTrackingMode::None && t.face.age < kSettleFrames)
             t.anchor = t.path;
-        const float step = std::max(1.5f, options.minFaceMoveFraction * t.face.size);
+        const float step = std::max(1.0f, options.minFaceMoveFraction * t.face.size);
         const bool maskCounts = !(t.tiltFound && t.face.state == FaceState::Tentative);
         if (t.path - t.anchor > step ||
-            (maskCounts && motionFraction(t.face.box()) >= options.minFaceMotionFraction)) {
+            (maskCounts && motionFraction(t.face.box()) >= options.minFaceMotionFraction) ||
+            (haveMotion && t.face.state == FaceState::Tentative && seen && turnedInImage(t))) {
             t.lastMotionFrame = frameIndex;
             t.anchor = t.path;
         }
@@ -909,7 +1009,8 @@ bool FaceTracker::Impl::process(const ConstImageView& gray, const ConstImageView
                 t.face.state = FaceState::Confirmed;
         } else if (seen) {
             t.face.state = FaceState::Confirmed;
-        } else if (t.face.misses > options.graceFrames) {
+        } else if (t.face.misses > options.graceFrames &&
+                   (!t.heldByCorners || t.face.misses > options.occludedGraceFrames)) {
             keep = false;
         } else {
             t.face.state = FaceState::Missing;
@@ -1001,6 +1102,7 @@ void FaceTracker::reset() noexcept
         impl_->tiltScan->resetIncremental();
     impl_->scan.resetIncremental();
     impl_->recent.fill(RecentArea{});
+    impl_->coldStart = true;
 }
 
 const FaceTrackerOptions& FaceTracker::options() const noexcept

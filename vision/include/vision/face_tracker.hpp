@@ -9,7 +9,9 @@
 //  2. the detector scans where there is motion (or a face was seen recently) and no track is,
 //     within a per-frame window budget (a scan may take several frames); the moving regions no
 //     track covers are also scanned turned by +-tiltScanDegrees, for faces that enter tilted
-//     beyond the upright cascade's reach;
+//     beyond the upright cascade's reach. The first frame (after construction or reset(),
+//     before the motion mask marks anything) is scanned whole, upright and turned, whatever the
+//     budget: the faces in view at start are all found at once, and step 5 sorts them;
 //  3. a track overlapping a detection is confirmed by it; a detection overlapping no track starts a
 //     new track (initial roll by symmetry, near a tilted scan's angle for its hits), unless its
 //     box holds a tracked face's centre (a grouping over two heads);
@@ -17,7 +19,8 @@
 //     patch and running first-hit detection there (again at the roll +-12 degrees if that fails:
 //     the tracked roll drifts); a failed verification is a miss;
 //  5. a track becomes Confirmed (shown) after `confirmFrames` detections or verifications in a
-//     row, and is dropped after `graceFrames` misses in a row.
+//     row, and is dropped after `graceFrames` misses in a row (`occludedGraceFrames` while its
+//     corners still hold it).
 // Ids are stable for the life of a track and never reused while the tracker lives.
 // Everything is allocated by the constructor; process() never allocates and never throws.
 #include "vision/face_detector.hpp"
@@ -86,8 +89,13 @@ struct FaceTrackerOptions {
     /// Detector windows per frame (0 = whole scan every frame). A bigger scan continues on the
     /// next frames, so no frame stalls on detection.
     long detectionWindowBudget = 0;
-    int confirmFrames = 2;                    ///< n: detections in a row before a face is shown
-    int graceFrames = 5;                      ///< m: misses in a row before a track is dropped
+    int confirmFrames = 2;  ///< n: detections in a row before a face is shown
+    int graceFrames = 5;    ///< m: misses in a row before a track is dropped
+    /// Beyond fig. 89: a shown face the detector misses while its corners still move together
+    /// (most survive each flow step) is covered, not gone: a hand or another head in front of
+    /// part of it, or the head turned. It keeps its place for this many misses in a row
+    /// (at least graceFrames) before it is dropped.
+    int occludedGraceFrames = 30;
     int maxFaces = 8;                         ///< tracks at most
     int maxCornersPerFace = 40;               ///< corners found in a new box
     int minCornersPerFace = 12;               ///< replenish when fewer survive
@@ -104,13 +112,15 @@ struct FaceTrackerOptions {
     bool rollByImageSymmetry = true;
     /// Static regions are ignored (the dissertation's motion rule; with a motion mask only): a
     /// face shows it moves when its centre leaves the place it last moved from by
-    /// minFaceMoveFraction of its size (at least 1.5 px), or when this fraction of the inner
-    /// half of its box is foreground. A photo on the wall beside a moving person does neither
-    /// (its mask fraction stays at a few percent, but lighting changes can raise it, hence the
-    /// high threshold). A Tentative track is confirmed only if it moved within the last
-    /// confirmMotionFrames frames (and a Tentative one that has not, after twice that, is
-    /// dropped), and a shown track that has not moved for staticDropFrames frames is dropped
-    /// (a photo that slipped through; a person standing still keeps their hat much longer).
+    /// minFaceMoveFraction of its size (at least 1 px; only flow steps that moved nearly all of
+    /// its corners count), or when this fraction of the inner half of its box is foreground, or
+    /// (not yet shown) when it turned in place by a few degrees and its image's symmetry agrees.
+    /// A photo on the wall beside a moving person does none of these (its mask fraction stays
+    /// at a few percent, but lighting changes can raise it, hence the high threshold; the
+    /// passer-by drags only the corners nearest to it). A Tentative track is confirmed only if it
+    /// moved within the last confirmMotionFrames frames (and a Tentative one that has not, after
+    /// twice that, is dropped), and a shown track that has not moved for staticDropFrames frames is
+    /// dropped (a photo that slipped through; a person standing still keeps their hat much longer).
     float minFaceMoveFraction = 0.015f;
     float minFaceMotionFraction = 0.6f;
     int confirmMotionFrames = 30;
