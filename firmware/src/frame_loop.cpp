@@ -150,6 +150,7 @@ void FrameLoop::addFaceStages(vision::Size size)
     o.useMotionMask = c.motionMask;
     o.confirmFrames = c.confirmFrames;
     o.graceFrames = c.graceFrames;
+    o.occludedGraceFrames = c.occludedGraceFrames;
     o.maxFaces = c.maxFaces;
     o.detectionWindowBudget = c.detectionBudget;
     o.tiltScanDegrees = static_cast<float>(c.tiltScanDeg);

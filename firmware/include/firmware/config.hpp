@@ -95,6 +95,7 @@ struct FacesConfig {
     int minSize = 24;  ///< smallest face box at the working resolution
     int confirmFrames = 2;
     int graceFrames = 5;
+    int occludedGraceFrames = 30;
     int maxFaces = 8;
     int detectionBudget = 5000;   ///< detector windows per frame; 0 = whole scan every frame
     double tiltScanDeg = 25.0;    ///< moving areas also scanned turned by +-this; 0 = off
