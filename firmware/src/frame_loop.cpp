@@ -778,6 +778,10 @@ void FrameLoop::noteSourceStatus(platform::SourceStatus status) noexcept
     } else if (!lost && sourceLost_) {
         MIRROR_LOG_INFO("source is back: %s", source_->description());
         notifier_.status("showing the mirror");
+        // The faces tracked before the loss are stale (people left, the camera may have moved):
+        // start afresh, with a whole-image scan of the first frame back.
+        if (faceStage_)
+            faceStage_->tracker().reset();
     }
     if (!lost)
         lostScreenNs_ = 0;
