@@ -198,7 +198,9 @@ TrackScore runConfig(const Config& config, const Sequence& seq, const vision::Ha
     topt.mode = config.mode;
     topt.useMotionMask = config.motionMask;
     topt.detector.minSize = {o.minSize, o.minSize};
-    topt.detectionWindowBudget = o.budget;
+    // Detector-only configurations show a face only in a frame whose scan completed: a scan
+    // spread over frames would leave them blank in between.
+    topt.detectionWindowBudget = config.mode == vision::FaceTrackingMode::None ? 0 : o.budget;
     vision::FaceStage faceStage(motion, cascade, topt);
 
     TrackScore score;
@@ -380,7 +382,10 @@ int runTrackEval(const TrackEvalOptions& o, std::FILE* out, std::FILE* err)
         std::fprintf(out,
                      "pipeline: MotionStage (frame / %d) + FaceStage, detector windows per frame "
                      "%s, tracker defaults otherwise; shown faces = TrackedFace::shown()\n",
-                     o.downscale, o.budget > 0 ? std::to_string(o.budget).c_str() : "unlimited");
+                     o.downscale,
+                     o.budget > 0
+                         ? (std::to_string(o.budget) + " (tracking configurations)").c_str()
+                         : "unlimited");
         std::fprintf(out,
                      "match: IoU(our square box, %s) >= %.2f, one to one, highest first; "
                      "unmatched shown faces%s are false positives; %s\n",

@@ -31,8 +31,9 @@ struct TrackEvalOptions {
     std::string config = "all";  ///< detector | motion | translation | similarity | all
     int downscale = 2;           ///< the motion stage's working resolution (frame / downscale)
     int minSize = 0;             ///< detector min face side in working pixels (0: the window's)
-    /// Detector windows per frame (FaceTrackerOptions::detectionWindowBudget); 0: every scan
-    /// completes in its frame. The mirror ships faces.detection_window_budget = 5000.
+    /// Detector windows per frame (FaceTrackerOptions::detectionWindowBudget) of the tracking
+    /// configurations; 0: every scan completes in its frame. The mirror ships
+    /// faces.detection_window_budget = 5000.
     long budget = 0;
     float minIou = 0.5f;
     int maxFrames = 0;      ///< 0: all frames; else the first N (tests)
