@@ -68,6 +68,21 @@ float iou(const BoxF& a, const BoxF& b) noexcept
     return uni > 0.f ? inter / uni : 0.f;
 }
 
+bool wholeInFrame(const BoxF& b, vision::Size frame) noexcept
+{
+    return b.x >= 0.f && b.y >= 0.f && b.x + b.width <= static_cast<float>(frame.width) &&
+           b.y + b.height <= static_cast<float>(frame.height);
+}
+
+BoxF partInView(const BoxF& b, vision::Size frame) noexcept
+{
+    const float x0 = std::max(b.x, 0.f);
+    const float y0 = std::max(b.y, 0.f);
+    const float x1 = std::min(b.x + b.width, static_cast<float>(frame.width));
+    const float y1 = std::min(b.y + b.height, static_cast<float>(frame.height));
+    return {x0, y0, std::max(0.f, x1 - x0), std::max(0.f, y1 - y0)};
+}
+
 bool contains(const BoxF& box, vision::Point2f p) noexcept
 {
     return p.x >= box.x && p.x <= box.x + box.width && p.y >= box.y && p.y <= box.y + box.height;

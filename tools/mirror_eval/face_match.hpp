@@ -8,13 +8,16 @@
 // centres first: a second detection of a face is a false positive.
 //
 // track: our square box against the truth box by intersection over union (IoU >= 0.5), paired
-// one to one, highest IoU first. With landmark truth (FGNet) the truth box is the square a
-// Viola-Jones detector gives on the face (detectorConventionBox), not the landmarks' bounding box:
-// that one runs from the eyebrows to the chin while a detector's box runs from the forehead to
-// below the mouth, so a correctly placed square scores only about 0.5-0.57 against it.
+// one to one, highest IoU first. A face partly out of view is optional (matched by its box or by
+// its part in view; neither a true nor a false positive, and missing it is no false negative). With
+// landmark truth (FGNet) the truth box is the square a Viola-Jones detector gives on the face
+// (detectorConventionBox), not the landmarks' bounding box: that one runs from the eyebrows to the
+// chin while a detector's box runs from the forehead to below the mouth, so a correctly placed
+// square scores only about 0.5-0.57 against it.
 
 #include "face_truth.hpp"
 #include "vision/geometry.hpp"
+#include "vision/image.hpp"
 
 #include <span>
 #include <string>
@@ -48,6 +51,10 @@ BoxF squareAbout(vision::Point2f centre, float size) noexcept;
 /// Bounding box of points (empty box for none).
 BoxF boundingBox(std::span<const vision::Point2f> points) noexcept;
 float iou(const BoxF& a, const BoxF& b) noexcept;
+/// True when the box lies wholly inside a frame of this size (edges included).
+bool wholeInFrame(const BoxF& box, vision::Size frame) noexcept;
+/// The part of a box inside a frame of this size (an empty box when none is).
+BoxF partInView(const BoxF& box, vision::Size frame) noexcept;
 /// Inclusive of the box edges.
 bool contains(const BoxF& box, vision::Point2f p) noexcept;
 

@@ -43,22 +43,6 @@ struct TruthFace {
     bool moving = true;
 };
 
-bool wholeInFrame(const BoxF& b, vision::Size frame) noexcept
-{
-    return b.x >= 0.f && b.y >= 0.f && b.x + b.width <= static_cast<float>(frame.width) &&
-           b.y + b.height <= static_cast<float>(frame.height);
-}
-
-/// The part of a box inside the frame.
-BoxF inView(const BoxF& b, vision::Size frame) noexcept
-{
-    const float x0 = std::max(b.x, 0.f);
-    const float y0 = std::max(b.y, 0.f);
-    const float x1 = std::min(b.x + b.width, static_cast<float>(frame.width));
-    const float y1 = std::min(b.y + b.height, static_cast<float>(frame.height));
-    return {x0, y0, std::max(0.f, x1 - x0), std::max(0.f, y1 - y0)};
-}
-
 struct Sequence {
     bool composed = false;
     std::vector<std::string> frames;            ///< paths, in order
@@ -270,7 +254,7 @@ TrackScore runConfig(const Config& config, const Sequence& seq, const vision::Ha
                 for (std::size_t u = 0; u < truth.size() && ti < 0; ++u) {
                     const TruthFace& t = truth[u];
                     if (t.moving && p.candidateOfTruth[u] < 0 && !wholeInFrame(t.box, frameSize) &&
-                        iou(shownBoxes[c], inView(t.box, frameSize)) >= o.minIou)
+                        iou(shownBoxes[c], partInView(t.box, frameSize)) >= o.minIou)
                         ti = static_cast<int>(u);
                 }
             }

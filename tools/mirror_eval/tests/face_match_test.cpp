@@ -75,6 +75,26 @@ TEST(FaceMatch, IouPairingHighestFirstAndThreshold)
     EXPECT_EQ(p.matches, 1);
 }
 
+TEST(FaceMatch, AFaceEnteringIsMatchedByItsPartInView)
+{
+    const vision::Size frame{640, 480};
+    EXPECT_TRUE(wholeInFrame({0.f, 0.f, 640.f, 480.f}, frame));
+    // A face entering on the right: 86 px box, 20 px of it outside.
+    const BoxF entering{574.f, 100.f, 86.f, 86.f};
+    EXPECT_FALSE(wholeInFrame(entering, frame));
+    const BoxF part = partInView(entering, frame);
+    EXPECT_FLOAT_EQ(part.x, 574.f);
+    EXPECT_FLOAT_EQ(part.width, 66.f);
+    EXPECT_FLOAT_EQ(part.height, 86.f);
+    // The detector boxes the part in view: below 0.5 against the whole box, above it against the
+    // part.
+    const BoxF shown{580.f, 115.f, 56.f, 56.f};
+    EXPECT_LT(iou(shown, entering), 0.5f);
+    EXPECT_GE(iou(shown, part), 0.5f);
+    const BoxF gone = partInView({700.f, 100.f, 50.f, 50.f}, frame);
+    EXPECT_FLOAT_EQ(gone.width, 0.f);
+}
+
 TEST(FaceMatch, DetectorConventionBox)
 {
     // Upright: side 2.5 x 20 = 50, centre raised 0.09 x 50 = 4.5 from (100, 100).
