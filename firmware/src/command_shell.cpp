@@ -271,25 +271,44 @@ void CommandShell::handle(const LineEvent& event, platform::Console& out) noexce
     send(out);
 }
 
+void CommandShell::writeLines(platform::Console& out, std::string_view text) noexcept
+{
+    if (!styles_[channel_].crlf) {
+        out.write(text);
+        return;
+    }
+    for (std::size_t end; (end = text.find('\n')) != std::string_view::npos;) {
+        out.write(text.substr(0, end));
+        out.write("\r\n");
+        text.remove_prefix(end + 1);
+    }
+    out.write(text);
+}
+
 void CommandShell::send(platform::Console& out) noexcept
 {
-    std::string_view text = reply_.text();
-    const bool crlf = styles_[channel_].crlf;
-    const std::string_view newline = crlf ? "\r\n" : "\n";
-    if (!crlf) {
-        out.write(text);
-    } else {
-        for (std::size_t end; (end = text.find('\n')) != std::string_view::npos;) {
-            out.write(text.substr(0, end));
-            out.write(newline);
-            text.remove_prefix(end + 1);
-        }
-        out.write(text);
-    }
+    writeLines(out, reply_.text());
     // Every reply ends its last line, even when the command forgot to.
     if (!reply_.empty() && reply_.text().back() != '\n')
-        out.write(newline);
+        out.write(styles_[channel_].crlf ? "\r\n" : "\n");
     writePrompt(out);
+}
+
+void CommandShell::notify(platform::Console& console, std::size_t channel,
+                          std::string_view text) noexcept
+{
+    if (text.empty())
+        return;
+    channel_ = std::min(channel, kChannels - 1);
+    const bool overPrompt = styles_[channel_].prompt && promptShown_[channel_];
+    if (overPrompt)
+        console.write("\r");  // the message takes the prompt's place at the start of the line
+    writeLines(console, text);
+    if (text.back() != '\n')
+        console.write(styles_[channel_].crlf ? "\r\n" : "\n");
+    if (overPrompt)
+        writePrompt(console);
+    channel_ = 0;
 }
 
 void CommandShell::writePrompt(platform::Console& out) noexcept

@@ -693,9 +693,9 @@ void FrameLoop::showSourceLost(std::int64_t now) noexcept
 
 void FrameLoop::tellConsoles(const char* text) noexcept
 {
-    for (platform::Console* console : consoles_)
-        if (console)
-            console->write(text);
+    for (std::size_t c = 0; c < consoles_.size(); ++c)
+        if (consoles_[c])
+            shell_.notify(*consoles_[c], c, text);
 }
 
 void FrameLoop::requestCardTraining() noexcept

@@ -434,6 +434,26 @@ TEST(CommandShell, CrlfOption)
               "a\r\nb\r\nusage: two\r\n  two lines\r\nerror: binary data ignored\r\n");
 }
 
+TEST(CommandShell, ANotificationTakesThePromptsPlaceAndPromptsAgain)
+{
+    // A serial terminal (prompt, CR LF) waiting at its prompt, and a pipe on standard input.
+    CommandShell shell;
+    shell.setChannelStyle(1, true, true);
+    addEcho(shell);
+    FakeConsole serial("echo a\r\n");
+    shell.poll(serial, 1);
+    ASSERT_EQ(serial.output, "> echo: 2 [a]\r\n> ");
+    shell.notify(serial, 1, "snapshot: /tmp/s.png\ntwo lines");
+    EXPECT_EQ(serial.output, "> echo: 2 [a]\r\n> \rsnapshot: /tmp/s.png\r\ntwo lines\r\n> ");
+
+    FakeConsole pipe;
+    shell.poll(pipe, 0);
+    shell.notify(pipe, 0, "card: trained\n");
+    EXPECT_EQ(pipe.output, "card: trained\n");
+    shell.notify(pipe, 0, "");
+    EXPECT_EQ(pipe.output, "card: trained\n");
+}
+
 TEST(CommandShell, PollAndExecuteDoNotAllocate)
 {
     if (!testing_support::allocationCountingAvailable())

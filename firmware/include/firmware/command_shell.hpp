@@ -132,6 +132,10 @@ public:
     /// Terminal style of one channel (channel 0 takes ShellOptions::prompt and crlf): a serial
     /// terminal wants a prompt and CR LF line ends, a pipe on standard input neither.
     void setChannelStyle(std::size_t channel, bool prompt, bool crlf) noexcept;
+    /// Writes a message that was not asked for just now (a snapshot written, a card trained) to
+    /// the console of `channel`, in its style: over the waiting prompt (a carriage return first),
+    /// its lines ended as the channel's are, and the prompt again after it.
+    void notify(platform::Console& console, std::size_t channel, std::string_view text) noexcept;
 
     const ShellOptions& options() const noexcept { return options_; }
     bool hasCommand(std::string_view name) const noexcept { return find(name) != nullptr; }
@@ -150,6 +154,8 @@ private:
     void handle(const LineEvent& event, platform::Console& out) noexcept;
     void send(platform::Console& out) noexcept;
     void writePrompt(platform::Console& out) noexcept;
+    /// `text` with its line ends as the current channel's.
+    void writeLines(platform::Console& out, std::string_view text) noexcept;
 
     ShellOptions options_;
     std::vector<LineAssembler> assemblers_;  ///< one per channel
