@@ -295,7 +295,7 @@ check_button_press() {
 # `snapshot` on the DRM display: the frame read back before the page flip, written as a PNG in
 # the state folder by user mirror; copied to the results for the host to check its pixels.
 check_snapshot_drm() {
-    # The path comes with a later frame, after the console's prompt ("> snapshot: /...png").
+    # The path comes with a later frame, in place of the waiting prompt ("\rsnapshot: /...png").
     local expect='snapshot: /.*\.png'
     console_round 30 snapshot || return 1
     local png
