@@ -7,8 +7,9 @@
 // crop (missed faces left out, as in the dissertation) and (b) from the landmarks, off by up to 5%
 // of their size each way as a detector's box is. Shared by the roll peer tests.
 
+#include "error_stats.hpp"
+#include "face_truth.hpp"
 #include "test_paths.hpp"
-#include "vision/roll_estimator.hpp"
 
 #include <gtest/gtest.h>
 
@@ -29,8 +30,6 @@
 namespace imm_rotated_faces {
 
 using vision::Point2f;
-
-constexpr double kPi = 3.14159265358979323846;
 
 struct Face {
     std::string image;
@@ -94,48 +93,22 @@ inline std::array<cv::Point2f, 3> axisPoints(const std::vector<cv::Point2f>& p)
     return {eyes, p[52], mean(p, 39, 46)};
 }
 
-/// Roll (our sign: clockwise on screen positive) of the best line through the axis points.
+/// Roll (our sign: clockwise on screen positive) of the best line through the axis points:
+/// mirror-eval roll's truth (face_truth.hpp).
 inline double truthRoll(const std::array<cv::Point2f, 3>& a)
 {
-    std::vector<Point2f> points;
-    for (const auto& p : a)
-        points.push_back({p.x, p.y});
-    // The principal direction of three nearly collinear points; the line fit folds it into
-    // +-45 degrees of horizontal, and a face's vertical axis is +-45 of vertical, so both agree.
-    double roll = vision::estimateRollByLineFit(points).rollDegrees;
-    // Sign check against the eye-to-mouth direction: for a face rolled clockwise by r the
-    // direction (eyes -> mouth) is (-sin r, cos r).
-    const cv::Point2f down = a[2] - a[0];
-    const double fromVertical = std::atan2(-down.x, down.y) * 180.0 / kPi;
-    if (std::fabs(fromVertical - roll) > 45.0)
-        roll = fromVertical;  // degenerate fit; use the two-point axis
-    return roll;
+    return mirror_eval::axisRollDegrees({a[0].x, a[0].y}, {a[1].x, a[1].y}, {a[2].x, a[2].y});
 }
 
 /// Absolute roll errors (degrees) of one estimator configuration.
-struct Errors {
-    const char* name = "";
-    std::vector<double> values;
+using Errors = mirror_eval::ErrorStats;
 
-    double mean() const
-    {
-        double sum = 0;
-        for (double x : values)
-            sum += x;
-        return values.empty() ? 0.0 : sum / static_cast<double>(values.size());
-    }
-    double within(double limit) const
-    {
-        const auto n =
-            std::count_if(values.begin(), values.end(), [&](double x) { return x <= limit; });
-        return values.empty() ? 0.0 : static_cast<double>(n) / static_cast<double>(values.size());
-    }
-    void report(const char* boxes) const
-    {
-        std::printf("roll %s %s: faces=%zu mean_err_deg=%.2f within1=%.0f%% within5=%.0f%%\n",
-                    boxes, name, values.size(), mean(), 100.0 * within(1.0), 100.0 * within(5.0));
-    }
-};
+/// One line: the configuration's errors on faces of the named kind of box.
+inline void printErrors(const Errors& e, const char* boxes)
+{
+    std::printf("roll %s %s: faces=%zu mean_err_deg=%.2f within1=%.0f%% within5=%.0f%%\n", boxes,
+                e.name, e.values.size(), e.mean(), 100.0 * e.within(1.0), 100.0 * e.within(5.0));
+}
 
 /// One rotated face: its crop, the truth roll and the two kinds of box.
 struct Sample {

@@ -37,7 +37,7 @@ struct Results {
     void report(const char* boxes) const
     {
         for (const Errors* e : {&symmetry60, &symmetry40, &dissertation60, &lineFit60, &upright})
-            e->report(boxes);
+            printErrors(*e, boxes);
     }
 };
 

@@ -1,6 +1,7 @@
 #include "roll_eval.hpp"
 
 #include "detect_eval.hpp"
+#include "error_stats.hpp"
 #include "face_match.hpp"
 #include "face_truth.hpp"
 #include "vision/corner_detector.hpp"
@@ -24,35 +25,6 @@
 namespace mirror_eval {
 
 namespace {
-
-/// Absolute errors (degrees) of one estimator.
-struct Errors {
-    const char* name;
-    std::vector<double> values;
-
-    double mean() const
-    {
-        double sum = 0;
-        for (double x : values)
-            sum += x;
-        return values.empty() ? 0.0 : sum / static_cast<double>(values.size());
-    }
-    double within(double limit) const
-    {
-        const auto n =
-            std::count_if(values.begin(), values.end(), [&](double x) { return x <= limit; });
-        return values.empty() ? 0.0 : static_cast<double>(n) / static_cast<double>(values.size());
-    }
-    double percentile(double q) const
-    {
-        if (values.empty())
-            return 0.0;
-        std::vector<double> v = values;
-        std::sort(v.begin(), v.end());
-        return v[std::min(v.size() - 1,
-                          static_cast<std::size_t>(q * static_cast<double>(v.size())))];
-    }
-};
 
 struct Crop {
     cv::Mat gray;
@@ -159,17 +131,17 @@ int runRollEval(const RollEvalOptions& o, std::FILE* out, std::FILE* err)
         vision::RollByImageSymmetry imageSymmetry(imageOptions);
         const vision::RollByImageSymmetryOptions& io = imageSymmetry.options();
 
-        Errors image{"image symmetry (primary)", {}};
-        Errors symmetry{"corner symmetry (issue-4 tuned)", {}};
-        Errors dissertation{"corner symmetry, dissertation's", {}};
-        Errors lineFit{"line-fit baseline", {}};
-        Errors upright{"assume upright (0)", {}};
-        Errors truthCentre{"diag: corners about truth centre", {}};
-        Errors eyeLine{"diag: image symmetry vs eye-line", {}};
-        Errors truthNoise{"diag: eye-line truth vs axis truth", {}};
-        Errors large{"diag: image symmetry, e-m >= 20 px", {}};
-        Errors confident{"diag: image symmetry, conf >= 0.3", {}};
-        Errors turned{"diag: image symmetry, |yaw| >= 0.1", {}};
+        ErrorStats image{"image symmetry (primary)", {}};
+        ErrorStats symmetry{"corner symmetry (issue-4 tuned)", {}};
+        ErrorStats dissertation{"corner symmetry, dissertation's", {}};
+        ErrorStats lineFit{"line-fit baseline", {}};
+        ErrorStats upright{"assume upright (0)", {}};
+        ErrorStats truthCentre{"diag: corners about truth centre", {}};
+        ErrorStats eyeLine{"diag: image symmetry vs eye-line", {}};
+        ErrorStats truthNoise{"diag: eye-line truth vs axis truth", {}};
+        ErrorStats large{"diag: image symmetry, e-m >= 20 px", {}};
+        ErrorStats confident{"diag: image symmetry, conf >= 0.3", {}};
+        ErrorStats turned{"diag: image symmetry, |yaw| >= 0.1", {}};
         std::vector<double> cornerCounts, centreOffsets, boxPerEyeMouth;
         int missed = 0, tooSmall = 0;
 
@@ -335,12 +307,6 @@ int runRollEval(const RollEvalOptions& o, std::FILE* out, std::FILE* err)
                     static_cast<double>(line.rollDegrees), n, offset, yaw, eyeRoll - truthRoll);
         }
 
-        const auto meanOf = [](const std::vector<double>& v) {
-            double s = 0;
-            for (double x : v)
-                s += x;
-            return v.empty() ? 0.0 : s / static_cast<double>(v.size());
-        };
         std::fprintf(out,
                      "faces: %zu, detected %zu, missed %d (%d crops smaller than the window)\n",
                      truth.size(), image.values.size(), missed, tooSmall);
@@ -350,8 +316,9 @@ int runRollEval(const RollEvalOptions& o, std::FILE* out, std::FILE* err)
                      meanOf(cornerCounts), meanOf(centreOffsets), meanOf(boxPerEyeMouth));
         std::fprintf(out, "%-36s %6s %9s %8s %8s %8s\n", "method", "faces", "mean_deg", "p90_deg",
                      "within1", "within5");
-        for (const Errors* e : {&image, &symmetry, &dissertation, &lineFit, &upright, &truthCentre,
-                                &eyeLine, &truthNoise, &large, &confident, &turned})
+        for (const ErrorStats* e :
+             {&image, &symmetry, &dissertation, &lineFit, &upright, &truthCentre, &eyeLine,
+              &truthNoise, &large, &confident, &turned})
             std::fprintf(out, "%-36s %6zu %9.2f %8.2f %8.3f %8.3f\n", e->name, e->values.size(),
                          e->mean(), e->percentile(0.9), e->within(1.0), e->within(5.0));
         std::fprintf(out, "method: image symmetry (RollByImageSymmetry)\n");

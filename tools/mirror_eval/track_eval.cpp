@@ -1,6 +1,7 @@
 #include "track_eval.hpp"
 
 #include "detect_eval.hpp"
+#include "error_stats.hpp"
 #include "face_match.hpp"
 #include "face_truth.hpp"
 #include "vision/face_stage.hpp"
@@ -23,14 +24,6 @@ namespace mirror_eval {
 namespace {
 
 namespace fs = std::filesystem;
-
-double meanOf(const std::vector<double>& v)
-{
-    double s = 0;
-    for (double x : v)
-        s += x;
-    return v.empty() ? 0.0 : s / static_cast<double>(v.size());
-}
 
 /// One truth face of a frame in the common form of both layouts.
 struct TruthFace {
