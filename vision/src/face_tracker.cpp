@@ -326,13 +326,8 @@ float FaceTracker::Impl::motionFraction(Rect box) const noexcept
         return 1.f;
     // The inner half of the box: a head moving past a still face (a poster, a photo on the wall)
     // sweeps the edges of its box far more than its middle.
-    const Rect inner{box.x + box.width / 4, box.y + box.height / 4, box.width / 2, box.height / 2};
-    const Rect r = clip(inner, options.imageSize);
-    if (r.width <= 0 || r.height <= 0)
-        return 0.f;
-    const std::uint32_t s = motion->sum(r.x, r.y, r.x + r.width, r.y + r.height);
-    return static_cast<float>(s) /
-           (255.f * static_cast<float>(r.width) * static_cast<float>(r.height));
+    return motion->maskFraction(
+        {box.x + box.width / 4, box.y + box.height / 4, box.width / 2, box.height / 2});
 }
 
 void FaceTracker::Impl::prepareScanMask(const ConstImageView& mask) noexcept
@@ -582,15 +577,14 @@ bool FaceTracker::Impl::turnedInImage(Track& t) noexcept
     // the turn counts only when the image's symmetry, measured afresh, turned the same way.
     if (!imageRoll || !t.haveImageRollAtStart || options.mode == FaceTrackingMode::Translation)
         return false;
-    const float turned = t.turn;
-    if (std::fabs(turned) < std::fabs(t.rollChecked) + kTurnCheckDegrees)
+    if (std::fabs(t.turn) < std::fabs(t.rollChecked) + kTurnCheckDegrees)
         return false;
-    t.rollChecked = turned;
+    t.rollChecked = t.turn;
     const RollEstimate r = imageRoll->estimate(grays[current].view(), t.face.centre, t.face.size);
     if (r.confidence < kMinImageRollConfidence)
         return false;
     const float seen = r.rollDegrees - t.imageRollAtStart;
-    return seen * turned > 0.f && std::fabs(seen) >= 0.5f * kTurnCheckDegrees;
+    return seen * t.turn > 0.f && std::fabs(seen) >= 0.5f * kTurnCheckDegrees;
 }
 
 void FaceTracker::Impl::correctRoll(Track& t) noexcept
@@ -667,9 +661,7 @@ bool FaceTracker::Impl::chooseTiltRegion() noexcept
         const int cy1 = std::min(cy + kTiltCell, s.height);
         for (int cx = 0; cx < s.width; cx += kTiltCell) {
             const int cx1 = std::min(cx + kTiltCell, s.width);
-            const std::uint32_t on = scanMaskIntegral.sum(cx, cy, cx1, cy1);
-            const float area = static_cast<float>((cx1 - cx) * (cy1 - cy));
-            if (static_cast<float>(on) < 255.f * kTiltMinMaskFraction * area)
+            if (scanMaskIntegral.maskFraction({cx, cy, cx1 - cx, cy1 - cy}) < kTiltMinMaskFraction)
                 continue;
             const float mx = 0.5f * static_cast<float>(cx + cx1);
             const float my = 0.5f * static_cast<float>(cy + cy1);
@@ -777,8 +769,7 @@ long FaceTracker::Impl::tiltScanStep(long budget) noexcept
             continue;
         tiltHitRolls[static_cast<std::size_t>(tiltCount)] = tiltAngle;
         tiltHits[static_cast<std::size_t>(tiltCount++)] = {
-            static_cast<int>(x - 0.5f * static_cast<float>(side) + 0.5f),
-            static_cast<int>(y - 0.5f * static_cast<float>(side) + 0.5f), side, side};
+            static_cast<int>(x - half + 0.5f), static_cast<int>(y - half + 0.5f), side, side};
     }
     return used;
 }
