@@ -27,6 +27,18 @@ double pattern(double u, double v)
 
 // The pattern turned clockwise on screen (y down) by `degrees` about `centre`: the pixel at
 // offset d from the centre shows the upright pattern at R(-degrees) d.
+/// A w x h grey image of uniform noise from `seed`.
+ImageBuffer noiseImage(int w, int h, unsigned seed)
+{
+    ImageBuffer img(w, h, PixelFormat::Gray8);
+    std::mt19937 rng(seed);
+    for (int y = 0; y < h; ++y) {
+        for (int x = 0; x < w; ++x)
+            img.view().row(y)[x] = static_cast<std::uint8_t>(rng() & 255);
+    }
+    return img;
+}
+
 ImageBuffer rotatedScene(int w, int h, Point2f centre, double degrees)
 {
     ImageBuffer img(w, h, PixelFormat::Gray8);
@@ -61,12 +73,7 @@ double meanErrorToUpright(const ImageBuffer& patch)
 
 TEST(UprightPatch, RollZeroIsAnExactCopy)
 {
-    ImageBuffer img(64, 48, PixelFormat::Gray8);
-    std::mt19937 rng(3);
-    for (int y = 0; y < 48; ++y) {
-        for (int x = 0; x < 64; ++x)
-            img.view().row(y)[x] = static_cast<std::uint8_t>(rng() & 255);
-    }
+    const ImageBuffer img = noiseImage(64, 48, 3);
     ImageBuffer patch(32, 32, PixelFormat::Gray8);
     ASSERT_TRUE(warpUpright(img.view(), {32.f, 24.f}, 0.f, 32.f, patch.view()));
     for (int v = 0; v < 32; ++v) {
@@ -153,12 +160,7 @@ TEST(UprightPatch, RejectsBadArgumentsWithoutTouchingThePatch)
 TEST(UprightPatch, WarpRotatedOfUnitOneIntoAWideRegionIsACopy)
 {
     // The tracker's tilted scans: a region of any shape, one patch pixel per image pixel.
-    ImageBuffer img(64, 48, PixelFormat::Gray8);
-    std::mt19937 rng(5);
-    for (int y = 0; y < 48; ++y) {
-        for (int x = 0; x < 64; ++x)
-            img.view().row(y)[x] = static_cast<std::uint8_t>(rng() & 255);
-    }
+    const ImageBuffer img = noiseImage(64, 48, 5);
     ImageBuffer patch(40, 20, PixelFormat::Gray8);
     ASSERT_TRUE(warpRotated(img.view(), {30.f, 25.f}, 0.f, 1.f, 1.f, patch.view()));
     for (int v = 0; v < 20; ++v) {
