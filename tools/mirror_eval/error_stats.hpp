@@ -1,7 +1,7 @@
 #pragma once
 // Summaries of absolute errors as the evaluations print them (mirror-eval roll and track, and the
 // roll peer tests that follow mirror-eval roll's protocol): mean, fraction within a limit,
-// percentile.
+// percentile; and the covariance behind mirror-eval roll's truth-noise estimate.
 
 #include <algorithm>
 #include <cstddef>
@@ -16,6 +16,18 @@ inline double meanOf(const std::vector<double>& v)
     for (double x : v)
         sum += x;
     return v.empty() ? 0.0 : sum / static_cast<double>(v.size());
+}
+
+/// Sample covariance of `a` and `b` (the same length, at least 2; else 0).
+inline double covarianceOf(const std::vector<double>& a, const std::vector<double>& b)
+{
+    if (a.size() != b.size() || a.size() < 2)
+        return 0.0;
+    const double ma = meanOf(a), mb = meanOf(b);
+    double sum = 0;
+    for (std::size_t i = 0; i < a.size(); ++i)
+        sum += (a[i] - ma) * (b[i] - mb);
+    return sum / static_cast<double>(a.size() - 1);
 }
 
 /// The absolute errors (degrees, pixels) of one estimator or configuration.

@@ -1,5 +1,6 @@
 #include "roll_eval.hpp"
 
+#include "cascade_response_roll.hpp"
 #include "detect_eval.hpp"
 #include "error_stats.hpp"
 #include "face_match.hpp"
@@ -20,6 +21,7 @@
 #include <opencv2/imgproc.hpp>
 #include <random>
 #include <stdexcept>
+#include <utility>
 #include <vector>
 
 namespace mirror_eval {
@@ -62,6 +64,60 @@ Crop makeCrop(const cv::Mat& image, const LandmarkFace& face, double rotation, i
                                m.at<double>(1, 2))};
     }
     return crop;
+}
+
+/// Each detected face's roll before the crop's rotation (a measured roll minus the known
+/// rotation), four ways: what the truth-noise estimate compares.
+struct UnrotatedRolls {
+    std::vector<double> axis, eyeLine, image, cascade;
+};
+
+/// The truth's own noise, by the three-cornered hat: the faces' unrotated rolls measured by the
+/// annotation (axis, eye line) and by the image (symmetry, cascade response) share only the
+/// faces' real roll, so their covariances estimate its spread and what each variance has beyond
+/// that is its own noise. The annotated axis on 13-20 px faces turns out noisy enough to cap
+/// what any estimator can score against it. `u` holds the faces whose two image estimates agree
+/// within 10 degrees: a gross failure of either would swamp the covariances, and the choice
+/// does not look at the annotation.
+void printTruthNoise(const UnrotatedRolls& u, std::FILE* out)
+{
+    const std::vector<double>* rows[] = {&u.axis, &u.eyeLine, &u.image, &u.cascade};
+    const char* names[] = {"axis truth", "eye-line truth", "image symmetry", "cascade response"};
+    std::fprintf(out,
+                 "truth noise: the roll of each face before the rotation (a roll less the known "
+                 "rotation) measured four ways, over the %zu faces whose image estimates agree "
+                 "within 10 deg; covariances (deg^2):\n%-18s",
+                 u.axis.size(), "");
+    for (const char* n : names)
+        std::fprintf(out, " %16s", n);
+    std::fprintf(out, "\n");
+    for (std::size_t i = 0; i < 4; ++i) {
+        std::fprintf(out, "%-18s", names[i]);
+        for (std::size_t j = 0; j < 4; ++j)
+            std::fprintf(out, " %16.2f", covarianceOf(*rows[i], *rows[j]));
+        std::fprintf(out, "\n");
+    }
+    // The faces' real roll spread, from each pair of measurements whose errors cannot share a
+    // cause (the annotator's clicks against the image; the two image methods share only pixels).
+    // Each gives a truth noise; their range is what an exact estimator could score.
+    const double axisVariance = covarianceOf(u.axis, u.axis);
+    const std::pair<const char*, double> real[] = {
+        {"axis-image", covarianceOf(u.axis, u.image)},
+        {"axis-cascade", covarianceOf(u.axis, u.cascade)},
+        {"image-cascade", covarianceOf(u.image, u.cascade)}};
+    double lo = 1.0, hi = 0.0;
+    std::fprintf(out, "axis truth noise (its variance less the real roll's, by");
+    for (const auto& [name, variance] : real) {
+        const double sd = std::sqrt(std::max(0.0, axisVariance - variance));
+        const double exact = sd > 0.0 ? std::erf(5.0 / (sd * std::sqrt(2.0))) : 1.0;
+        lo = std::min(lo, exact);
+        hi = std::max(hi, exact);
+        std::fprintf(out, " %s: sd %.2f deg", name, sd);
+    }
+    std::fprintf(out,
+                 "); an exact roll estimator scored against this truth: within5 %.3f-%.3f if the "
+                 "noise is Gaussian\n",
+                 lo, hi);
 }
 
 int cropSide(const LandmarkFace& face, int minSide)
@@ -142,6 +198,9 @@ int runRollEval(const RollEvalOptions& o, std::FILE* out, std::FILE* err)
         ErrorStats large{"diag: image symmetry, e-m >= 20 px", {}};
         ErrorStats confident{"diag: image symmetry, conf >= 0.3", {}};
         ErrorStats turned{"diag: image symmetry, |yaw| >= 0.1", {}};
+        ErrorStats cascadeRoll{"diag: cascade response", {}};
+        CascadeResponseRoll cascadeResponse(cascade);
+        UnrotatedRolls unrotated;
         std::vector<double> cornerCounts, centreOffsets, boxPerEyeMouth;
         int missed = 0, tooSmall = 0;
 
@@ -281,6 +340,14 @@ int runRollEval(const RollEvalOptions& o, std::FILE* out, std::FILE* err)
                 rotation;
             eyeLine.values.push_back(std::fabs(byImage.rollDegrees - eyeRoll));
             truthNoise.values.push_back(std::fabs(eyeRoll - truthRoll));
+            const double byCascade = cascadeResponse.estimate(view, boxCentre, size);
+            cascadeRoll.values.push_back(std::fabs(byCascade - truthRoll));
+            if (std::fabs(byImage.rollDegrees - byCascade) <= 10.0) {
+                unrotated.axis.push_back(truthRoll - rotation);
+                unrotated.eyeLine.push_back(eyeRoll - rotation);
+                unrotated.image.push_back(byImage.rollDegrees - rotation);
+                unrotated.cascade.push_back(byCascade - rotation);
+            }
             if (f.eyeMouthDistance() >= 20.f)
                 large.values.push_back(error);
             // Yaw proxy: the nose's sideways offset from the eye-midpoint-mouth line, per
@@ -318,9 +385,10 @@ int runRollEval(const RollEvalOptions& o, std::FILE* out, std::FILE* err)
                      "within1", "within5");
         for (const ErrorStats* e :
              {&image, &symmetry, &dissertation, &lineFit, &upright, &truthCentre, &eyeLine,
-              &truthNoise, &large, &confident, &turned})
+              &truthNoise, &large, &confident, &turned, &cascadeRoll})
             std::fprintf(out, "%-36s %6zu %9.2f %8.2f %8.3f %8.3f\n", e->name, e->values.size(),
                          e->mean(), e->percentile(0.9), e->within(1.0), e->within(5.0));
+        printTruthNoise(unrotated, out);
         std::fprintf(out, "method: image symmetry (RollByImageSymmetry)\n");
         std::fprintf(out, "roll: faces=%zu mean_err_deg=%.2f within1=%.3f within5=%.3f\n",
                      image.values.size(), image.mean(), image.within(1.0), image.within(5.0));

@@ -7,7 +7,9 @@
 // detection holding the (rotated) eye midpoint and mouth centre, Shi-Tomasi corners in its box
 // (CornerDetector, min distance a fraction of the box side) give the roll by corner symmetry, and
 // the box's image its roll by image symmetry. Truth: the
-// best line through eye midpoint, nose and mouth centre. Also the line-fit baseline.
+// best line through eye midpoint, nose and mouth centre. Also the line-fit baseline, and an
+// estimate of the truth's own noise (three-cornered hat, with CascadeResponseRoll as a second
+// image measurement independent of symmetry): what an exact estimator could score against it.
 
 #include "vision/roll_by_image_symmetry.hpp"
 
