@@ -75,10 +75,10 @@ struct UnrotatedRolls {
 /// The truth's own noise, by the three-cornered hat: the faces' unrotated rolls measured by the
 /// annotation (axis, eye line) and by the image (symmetry, cascade response) share only the
 /// faces' real roll, so their covariances estimate its spread and what each variance has beyond
-/// that is its own noise. The annotated axis on 13-20 px faces turns out noisy enough to cap
-/// what any estimator can score against it. `u` holds the faces whose two image estimates agree
-/// within 10 degrees: a gross failure of either would swamp the covariances, and the choice
-/// does not look at the annotation.
+/// that is its own noise. The annotated axis of faces 13-20 px from eyes to mouth turns out
+/// noisy enough to cap what any estimator can score against it. `u` holds the faces whose two image
+/// estimates agree within 10 degrees: a gross failure of either would swamp the covariances, and
+/// the choice does not look at the annotation.
 void printTruthNoise(const UnrotatedRolls& u, std::FILE* out)
 {
     const std::vector<double>* rows[] = {&u.axis, &u.eyeLine, &u.image, &u.cascade};
@@ -97,9 +97,10 @@ void printTruthNoise(const UnrotatedRolls& u, std::FILE* out)
             std::fprintf(out, " %16.2f", covarianceOf(*rows[i], *rows[j]));
         std::fprintf(out, "\n");
     }
-    // The faces' real roll spread, from each pair of measurements whose errors cannot share a
-    // cause (the annotator's clicks against the image; the two image methods share only pixels).
-    // Each gives a truth noise; their range is what an exact estimator could score.
+    // The faces' real roll spread, from each pair of measurements whose errors should be
+    // independent: the annotator's clicks against either image method, and the two image
+    // methods, which share only the pixels (any error they share inflates their covariance: the
+    // generous end). Each gives a truth noise; the range is what an exact estimator could score.
     const double axisVariance = covarianceOf(u.axis, u.axis);
     const std::pair<const char*, double> real[] = {
         {"axis-image", covarianceOf(u.axis, u.image)},
