@@ -29,7 +29,6 @@ namespace fs = std::filesystem;
 struct TruthFace {
     int id = 0;
     BoxF box{};
-    BoxF landmarkBox{};  ///< FGNet: the landmarks' bounding box (reported, not matched)
     vision::Point2f centre{};
     double rollDegrees = 0.0;
     double eyeRollDegrees = 0.0;  ///< FGNet: the eye line's roll (diagnostic)
@@ -94,8 +93,7 @@ Sequence loadSequence(const TrackEvalOptions& o)
                                          std::to_string(points.size()));
             const auto axis = axisPoints68(points);
             TruthFace tf;
-            tf.landmarkBox = boundingBox(points);
-            tf.box = detectorConventionBox(axis[0], axis[2]);
+            tf.box = boundingBox(points);  // issue 4: the landmarks' bounding box
             tf.centre = {tf.box.x + 0.5f * tf.box.width, tf.box.y + 0.5f * tf.box.height};
             tf.rollDegrees = axisRollDegrees(axis[0], axis[1], axis[2]);
             tf.eyeRollDegrees =
@@ -206,7 +204,10 @@ TrackScore runConfig(const Config& config, const Sequence& seq, const vision::Ha
         for (const vision::TrackedFace& f : faceStage.faces()) {
             if (f.shown()) {
                 shown.push_back(&f);
-                shownBoxes.push_back(squareAbout(f.centre, f.size));
+                // Landmark truth: our square as the box its face's landmarks would have.
+                shownBoxes.push_back(seq.composed
+                                         ? squareAbout(f.centre, f.size)
+                                         : landmarkConventionBox(f.centre, f.size, f.rollDegrees));
             }
         }
         const std::vector<TruthFace>& truth = seq.truth[k];
@@ -266,10 +267,8 @@ TrackScore runConfig(const Config& config, const Sequence& seq, const vision::Ha
             const TruthFace& t = truth[static_cast<std::size_t>(ti)];
             ++score.truePositives;
             score.ious.push_back(iou(shownBoxes[c], t.box));
-            if (!seq.composed) {
-                score.landmarkIous.push_back(iou(shownBoxes[c], t.landmarkBox));
+            if (!seq.composed)
                 score.eyeRollErrors.push_back(std::fabs(shown[c]->rollDegrees - t.eyeRollDegrees));
-            }
             double err = std::fabs(shown[c]->rollDegrees - t.rollDegrees);
             score.rollErrors.push_back(err);
             const double dx = shown[c]->centre.x - t.centre.x;
@@ -363,22 +362,19 @@ int runTrackEval(const TrackEvalOptions& o, std::FILE* out, std::FILE* err)
                      o.budget > 0
                          ? (std::to_string(o.budget) + " (tracking configurations)").c_str()
                          : "unlimited");
-        std::fprintf(out,
-                     "match: IoU(our square box, %s) >= %.2f, one to one, highest first; "
-                     "unmatched shown faces%s are false positives; %s\n",
-                     seq.composed ? "truth square of `size` about (cx, cy)"
-                                  : "the detector-convention square of the landmarks: side 2.5 x "
-                                    "eye-mouth distance, centre raised 0.09 x side from the "
-                                    "eye-mouth midpoint (measured by mirror-eval detect on "
-                                    "CMU/MIT set A; the landmarks' bounding box runs eyebrows to "
-                                    "chin, where a correct square box scores only ~0.5)",
-                     static_cast<double>(o.minIou),
-                     seq.composed ? " and shown faces on static faces" : "",
-                     seq.composed ? "a moving face wholly in the frame and unmatched is a false "
-                                    "negative; a moving face partly out of view is optional: a "
-                                    "shown face on it (IoU with its box or with its part in view) "
-                                    "is neither a true nor a false positive (column 'part')"
-                                  : "a frame without a match is a false negative");
+        std::fprintf(
+            out,
+            "match: IoU(%s) >= %.2f, one to one, highest first; "
+            "unmatched shown faces%s are false positives; %s\n",
+            seq.composed
+                ? "our square box, the truth square of `size` about (cx, cy)"
+                : ("our box, the landmarks' bounding box; our box: " + landmarkBoxText()).c_str(),
+            static_cast<double>(o.minIou), seq.composed ? " and shown faces on static faces" : "",
+            seq.composed ? "a moving face wholly in the frame and unmatched is a false "
+                           "negative; a moving face partly out of view is optional: a "
+                           "shown face on it (IoU with its box or with its part in view) "
+                           "is neither a true nor a false positive (column 'part')"
+                         : "a frame without a match is a false negative");
         std::fprintf(out,
                      "roll error: |our roll - truth roll| over true positives (%s); jitter: mean "
                      "|(our centre - truth centre) change| between consecutive frames of a "
@@ -406,17 +402,6 @@ int runTrackEval(const TrackEvalOptions& o, std::FILE* out, std::FILE* err)
                          orDash(roll, s.rollMeanError(), "%.2f").c_str(),
                          orDash(roll && !seq.composed, meanOf(s.eyeRollErrors), "%.2f").c_str(),
                          s.jitterMean(), meanOf(s.ious));
-        }
-        if (!seq.composed) {
-            std::fprintf(out,
-                         "IoU of the true positives against the landmarks' bounding box "
-                         "instead (not used for matching):");
-            for (const TrackScore& s : scores) {
-                const auto lo = std::min_element(s.landmarkIous.begin(), s.landmarkIous.end());
-                std::fprintf(out, " %s mean %.3f min %.3f;", s.config.c_str(),
-                             meanOf(s.landmarkIous), lo == s.landmarkIous.end() ? 0.0 : *lo);
-            }
-            std::fputc('\n', out);
         }
         if (seq.composed && !scores.front().staticMaskFractions.empty())
             std::fprintf(out,

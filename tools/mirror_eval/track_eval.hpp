@@ -6,9 +6,10 @@
 //
 // Truth layouts (--truth DIR, matched to the frames by file stem):
 //  - FGNet talking face: DIR/<stem>.pts, 68 points. One face, always in view. Truth box = the
-//    detector-convention square of the landmarks (face_match.hpp: the landmarks' bounding box
-//    cannot reach IoU 0.5 reliably with a correct square box); truth roll = the line through eye
-//    midpoint, nose tip and mouth centre (face_truth.hpp); truth centre = the truth box's centre.
+//    landmarks' bounding box (issue 4), against which our square face box is matched as the
+//    landmark box it implies (face_match.hpp: landmarkConventionBox); truth roll = the line
+//    through eye midpoint, nose tip and mouth centre (face_truth.hpp); truth centre = the truth
+//    box's centre.
 //  - composed (tools/facegen): DIR/<stem>.txt, "id cx cy size roll_deg moving" per face; truth
 //    box = the square of `size` about (cx, cy). A shown face on a static face (moving 0) is a
 //    false positive; a moving face wholly in the frame that no shown face matches is a false
@@ -54,7 +55,6 @@ struct TrackScore {
     std::vector<double> rollErrors;     ///< |roll - truth roll| per true positive
     std::vector<double> centreSteps;    ///< |(c - g)_t - (c - g)_{t-1}| per continued match, px
     std::vector<double> ious;           ///< IoU of every true positive
-    std::vector<double> landmarkIous;   ///< FGNet: IoU of every true positive with the landmark box
     std::vector<double> eyeRollErrors;  ///< FGNet: |roll - eye line's roll| per true positive
     /// Composed: motion-mask foreground fraction inside static / moving truth boxes (from frame
     /// 30, once the background model has settled).

@@ -1,6 +1,6 @@
 // The matching rules of mirror-eval detect and track: the detect rule (eyes and mouth centre
 // inside, side within a factor 2 of the face's scale), one-to-one pairings, IoU, and the
-// detector-convention truth box.
+// landmark box of a detector's square.
 
 #include "face_match.hpp"
 
@@ -95,18 +95,18 @@ TEST(FaceMatch, AFaceEnteringIsMatchedByItsPartInView)
     EXPECT_FLOAT_EQ(gone.width, 0.f);
 }
 
-TEST(FaceMatch, DetectorConventionBox)
+TEST(FaceMatch, LandmarkConventionBox)
 {
-    // Upright: side 2.5 x 20 = 50, centre raised 0.09 x 50 = 4.5 from (100, 100).
-    const BoxF b = detectorConventionBox({100, 90}, {100, 110});
-    EXPECT_FLOAT_EQ(b.width, 50.f);
-    EXPECT_FLOAT_EQ(b.height, 50.f);
-    EXPECT_NEAR(b.x + 25.f, 100.f, 1e-4);
-    EXPECT_NEAR(b.y + 25.f, 95.5f, 1e-4);
-    // Rolled 90 degrees (eyes on the right, mouth on the left): raised towards the eyes, +x.
-    const BoxF r = detectorConventionBox({110, 100}, {90, 100});
-    EXPECT_NEAR(r.x + 25.f, 104.5f, 1e-4);
-    EXPECT_NEAR(r.y + 25.f, 100.f, 1e-4);
+    // Upright: side 0.805 x 100, centre 0.125 x 100 below (100, 100).
+    const BoxF b = landmarkConventionBox({100, 100}, 100.f, 0.f);
+    EXPECT_FLOAT_EQ(b.width, 80.5f);
+    EXPECT_FLOAT_EQ(b.height, 80.5f);
+    EXPECT_NEAR(b.x + 40.25f, 100.f, 1e-4);
+    EXPECT_NEAR(b.y + 40.25f, 112.5f, 1e-4);
+    // Rolled 90 degrees clockwise (the chin on the left): dropped towards -x.
+    const BoxF r = landmarkConventionBox({100, 100}, 100.f, 90.f);
+    EXPECT_NEAR(r.x + 40.25f, 87.5f, 1e-4);
+    EXPECT_NEAR(r.y + 40.25f, 100.f, 1e-4);
 }
 
 TEST(FaceMatch, BoundingBoxAndSquare)
