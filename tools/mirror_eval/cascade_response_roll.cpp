@@ -12,7 +12,7 @@ constexpr int kPatch = 48;  // the face box becomes ~30 px: the 24 px window fit
 constexpr float kSquarePerBox = 1.6f;
 constexpr double kRange = 55.0;  // beyond the +-30 rotation plus the faces' own roll
 constexpr double kStep = 2.5;
-constexpr int kAngles = 45;  // 2 x 55 / 2.5 + 1
+constexpr int kAngles = static_cast<int>(2.0 * kRange / kStep) + 1;
 constexpr double kRunFraction = 0.3;
 
 vision::FaceDetectorOptions patchDetectorOptions()

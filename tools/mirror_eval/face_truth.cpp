@@ -71,17 +71,6 @@ vision::Point2f mid(vision::Point2f a, vision::Point2f b)
     return {0.5f * (a.x + b.x), 0.5f * (a.y + b.y)};
 }
 
-vision::Point2f meanOf(const std::vector<vision::Point2f>& p, int first, int last)
-{
-    double x = 0, y = 0;
-    for (int i = first; i <= last; ++i) {
-        x += p[static_cast<std::size_t>(i)].x;
-        y += p[static_cast<std::size_t>(i)].y;
-    }
-    const double n = last - first + 1;
-    return {static_cast<float>(x / n), static_cast<float>(y / n)};
-}
-
 }  // namespace
 
 vision::Point2f LandmarkFace::eyeMidpoint() const noexcept
@@ -245,6 +234,17 @@ double axisRollDegrees(vision::Point2f eyeMidpoint, vision::Point2f nose,
     if (std::fabs(fromVertical - roll) > 45.0)
         roll = fromVertical;
     return roll;
+}
+
+vision::Point2f meanOf(const std::vector<vision::Point2f>& p, int first, int last)
+{
+    double x = 0, y = 0;
+    for (int i = first; i <= last; ++i) {
+        x += p[static_cast<std::size_t>(i)].x;
+        y += p[static_cast<std::size_t>(i)].y;
+    }
+    const double n = last - first + 1;
+    return {static_cast<float>(x / n), static_cast<float>(y / n)};
 }
 
 std::array<vision::Point2f, 3> axisPoints68(const std::vector<vision::Point2f>& p)

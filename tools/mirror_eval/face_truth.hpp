@@ -67,6 +67,9 @@ std::vector<ComposedFace> loadComposedTruth(const std::string& path);
 double axisRollDegrees(vision::Point2f eyeMidpoint, vision::Point2f nose,
                        vision::Point2f mouthCentre) noexcept;
 
+/// Mean of points[first..last] (inclusive): a landmark group's centre (an eye, the outer lip).
+vision::Point2f meanOf(const std::vector<vision::Point2f>& points, int first, int last);
+
 /// The axis points of the FGNet 68-point markup: eye midpoint (of the eye centres 31 and 36),
 /// nose tip (67), mouth centre (mean of the outer lip 48-59). Requires 68 points.
 std::array<vision::Point2f, 3> axisPoints68(const std::vector<vision::Point2f>& points);

@@ -4,12 +4,14 @@
 #include "cascade_response_roll.hpp"
 
 #include "detect_eval.hpp"
+#include "face_match.hpp"
 #include "face_truth.hpp"
 #include "test_paths.hpp"
 #include "vision/haar_cascade.hpp"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
@@ -28,15 +30,9 @@ TEST(CascadeResponseRoll, FollowsARotationOfTheFace)
     const cv::Mat frame = cv::imread(fgnet + "/images/franck_00000.jpg", cv::IMREAD_GRAYSCALE);
     ASSERT_FALSE(frame.empty());
     const std::vector<vision::Point2f> points = loadPts(fgnet + "/points/franck_00000.pts");
-    float x0 = 1e9f, y0 = 1e9f, x1 = -1e9f, y1 = -1e9f;
-    for (const vision::Point2f& p : points) {
-        x0 = std::min(x0, p.x);
-        y0 = std::min(y0, p.y);
-        x1 = std::max(x1, p.x);
-        y1 = std::max(y1, p.y);
-    }
-    const vision::Point2f centre{0.5f * (x0 + x1), 0.5f * (y0 + y1)};
-    const float side = std::max(x1 - x0, y1 - y0);
+    const BoxF box = boundingBox(points);
+    const vision::Point2f centre{box.x + 0.5f * box.width, box.y + 0.5f * box.height};
+    const float side = std::max(box.width, box.height);
 
     CascadeResponseRoll roll(vision::loadHaarCascade(kDefaultCascade));
     const double upright = roll.estimate(viewOf(frame), centre, side);

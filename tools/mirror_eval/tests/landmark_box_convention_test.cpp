@@ -5,6 +5,7 @@
 
 #include "detect_eval.hpp"
 #include "face_match.hpp"
+#include "face_truth.hpp"
 #include "test_paths.hpp"
 #include "vision/face_detector.hpp"
 #include "vision/haar_cascade.hpp"
@@ -48,16 +49,6 @@ std::vector<DlibFace> loadDlibFaces(const std::string& path)
             faces.back().points.push_back({static_cast<float>(x), static_cast<float>(y)});
     }
     return faces;
-}
-
-vision::Point2f meanOf(const std::vector<vision::Point2f>& p, int first, int last)
-{
-    vision::Point2f m{0.f, 0.f};
-    for (int i = first; i <= last; ++i) {
-        m.x += p[static_cast<std::size_t>(i)].x / static_cast<float>(last - first + 1);
-        m.y += p[static_cast<std::size_t>(i)].y / static_cast<float>(last - first + 1);
-    }
-    return m;
 }
 
 double median(std::vector<double> v)
