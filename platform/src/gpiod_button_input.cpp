@@ -17,14 +17,38 @@ namespace platform {
 
 namespace {
 
-std::int64_t monotonicNowNs() noexcept
+std::int64_t clockNowNs(clockid_t clock) noexcept
 {
     timespec ts{};
-    ::clock_gettime(CLOCK_MONOTONIC, &ts);
+    ::clock_gettime(clock, &ts);
     return static_cast<std::int64_t>(ts.tv_sec) * 1'000'000'000 + ts.tv_nsec;
 }
 
+std::int64_t monotonicNowNs() noexcept
+{
+    return clockNowNs(CLOCK_MONOTONIC);
+}
+
+std::int64_t distanceNs(std::int64_t a, std::int64_t b) noexcept
+{
+    return a > b ? a - b : b - a;
+}
+
 }  // namespace
+
+std::int64_t edgeStampToMonotonicNs(std::int64_t stampNs, std::int64_t monotonicNowNs,
+                                    std::int64_t realtimeNowNs) noexcept
+{
+    // Which clock stamped it is told by which it is nearer: the two are decades apart on a
+    // machine with a set clock, and where they are not (a board that booted at the epoch) the
+    // offset is as small as the choice is unsure. The stamp is moved, never replaced by the time
+    // it was read: a press read late (a frame loop stalled for seconds) keeps its length, where
+    // dating both edges "now" would make it a zero-length bounce and lose it.
+    std::int64_t t = stampNs;
+    if (distanceNs(stampNs, realtimeNowNs) < distanceNs(stampNs, monotonicNowNs))
+        t = stampNs - (realtimeNowNs - monotonicNowNs);
+    return std::min(t, monotonicNowNs);
+}
 
 bool parseGpioBias(const std::string& text, GpioBias& out) noexcept
 {
@@ -146,11 +170,10 @@ int GpiodButtonInput::poll(ButtonEvent* out, int capacity) noexcept
         return -1;
     }
     const std::int64_t now = monotonicNowNs();
+    const std::int64_t wallNow = n > 0 ? clockNowNs(CLOCK_REALTIME) : 0;
     for (int i = 0; i < n; ++i) {
-        // Kernels before 5.7 stamp with the wall clock: date such an event when it was read.
-        const std::int64_t skew = edges_[static_cast<std::size_t>(i)].timeNs - now;
-        if (skew > 1'000'000'000 || skew < -1'000'000'000)
-            edges_[static_cast<std::size_t>(i)].timeNs = now;
+        std::int64_t& t = edges_[static_cast<std::size_t>(i)].timeNs;
+        t = edgeStampToMonotonicNs(t, now, wallNow);
     }
     return classifier_.process(
         std::span<const ButtonEdge>(edges_.data(), static_cast<std::size_t>(n)), now, out,

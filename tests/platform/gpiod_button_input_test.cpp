@@ -98,6 +98,55 @@ TEST(GpiodButtonInput, BiasWordsRoundTrip)
     EXPECT_FALSE(platform::parseGpioBias("pullup", bias));
 }
 
+// The kernel's stamps on the monotonic clock, however late the frame loop reads them: a frame
+// loop stalled for seconds (a busy machine) must still see a 150 ms press as a 150 ms press.
+constexpr std::int64_t kSecond = 1'000'000'000;
+constexpr std::int64_t kMonotonicNow = 500 * kSecond;               // 500 s since boot
+constexpr std::int64_t kWallNow = 1'796'000'000LL * kSecond;        // late 2026
+
+TEST(GpiodButtonInput, AMonotonicStampReadLateKeepsItsTime)
+{
+    for (const std::int64_t late : {std::int64_t{0}, kSecond / 10, 3 * kSecond, 60 * kSecond}) {
+        const std::int64_t stamp = kMonotonicNow - late;
+        EXPECT_EQ(platform::edgeStampToMonotonicNs(stamp, kMonotonicNow, kWallNow), stamp) << late;
+    }
+}
+
+TEST(GpiodButtonInput, AWallClockStampOfAnOlderKernelIsMovedOntoTheMonotonicClock)
+{
+    const std::int64_t late = 3 * kSecond;
+    EXPECT_EQ(platform::edgeStampToMonotonicNs(kWallNow - late, kMonotonicNow, kWallNow),
+              kMonotonicNow - late);
+    // A board whose clock was never set (the epoch plus its uptime): the clocks nearly agree,
+    // and either reading is off by no more than their offset (here 2 ms).
+    const std::int64_t offset = 2'000'000;
+    EXPECT_NEAR(platform::edgeStampToMonotonicNs(kMonotonicNow + offset - late, kMonotonicNow,
+                                                  kMonotonicNow + offset),
+                kMonotonicNow - late, offset);
+    // Never later than now, whichever clock it was.
+    EXPECT_EQ(platform::edgeStampToMonotonicNs(kMonotonicNow + kSecond, kMonotonicNow, kWallNow),
+              kMonotonicNow);
+}
+
+TEST(GpiodButtonInput, AShortPressReadSecondsLateIsStillAShortPress)
+{
+    // The two edges of a 150 ms press, read together 3 s after the release.
+    platform::ButtonPressOptions press;
+    press.longPressNs = 2 * kSecond;
+    platform::ButtonPressClassifier classifier(1, press);
+    const std::int64_t down = kMonotonicNow - 3 * kSecond - kSecond * 15 / 100;
+    const std::int64_t up = kMonotonicNow - 3 * kSecond;
+    classifier.setLevel(1, true, down - kSecond);  // released (active low: high)
+    const platform::ButtonEdge edges[] = {
+        {1, false, platform::edgeStampToMonotonicNs(down, kMonotonicNow, kWallNow)},
+        {1, true, platform::edgeStampToMonotonicNs(up, kMonotonicNow, kWallNow)}};
+    ButtonEvent out[4];
+    const int n = classifier.process(edges, kMonotonicNow, out, 4);
+    ASSERT_EQ(n, 1);
+    EXPECT_EQ(out[0].button, 1);
+    EXPECT_EQ(out[0].kind, ButtonEvent::Short);
+}
+
 /// A gpio-sim chip with at least two lines, given as "CHIP SYSFS_DIR": the chip (path or name)
 /// and the folder holding its sim_gpio0/, sim_gpio1/ (e.g. "/dev/gpiochip1
 /// /sys/devices/platform/gpio-sim.0/gpiochip1"). Lines 0 and 1 are the buttons; a press is

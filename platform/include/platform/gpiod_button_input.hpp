@@ -47,9 +47,9 @@ struct GpiodButtonOptions {
 /// (fd()); poll() reads what is waiting, feeds each edge to the classifier, lets it see the time
 /// (for long presses) and returns the presses.
 ///
-/// Timestamps: the kernel stamps events with CLOCK_MONOTONIC since Linux 5.7; an event whose
-/// stamp is more than a second away from CLOCK_MONOTONIC (an older kernel's wall clock) is dated
-/// at the time it was read instead, so long presses still fire.
+/// Timestamps: the kernel stamps events with CLOCK_MONOTONIC since Linux 5.7 and with the wall
+/// clock before; edgeStampToMonotonicNs() puts either on CLOCK_MONOTONIC, so a press keeps its
+/// length however late the frame loop reads it.
 ///
 /// The constructor throws std::runtime_error with one line ("gpio: ...: why") when the chip is
 /// missing, a line does not exist or is used by someone else, or the kernel refuses the bias.
@@ -79,6 +79,12 @@ private:
     char description_[160] = "";
     char error_[160] = "";
 };
+
+/// An edge event's kernel stamp on CLOCK_MONOTONIC, given both clocks read just now: a stamp
+/// nearer the wall clock than the monotonic clock (a kernel before 5.7) is moved by the clocks'
+/// offset; none is later than now.
+std::int64_t edgeStampToMonotonicNs(std::int64_t stampNs, std::int64_t monotonicNowNs,
+                                    std::int64_t realtimeNowNs) noexcept;
 
 /// Parses "as-is", "disable", "pull-up", "pull-down" (the config's words); false if none.
 bool parseGpioBias(const std::string& text, GpioBias& out) noexcept;
