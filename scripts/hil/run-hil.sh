@@ -11,7 +11,18 @@ here=$(cd "$(dirname "$0")" && pwd)
 
 [ $# -ge 1 ] || { echo "usage: $0 BUILD_DIR" >&2; exit 2; }
 build=$(cd "$1" && pwd)
-timeout_s=${HIL_TIMEOUT:-480}
+# The machine's limits, in seconds of an idle reference host (a 2-core machine of this kind,
+# 2026-12-01: the mirror's start in calibrate took HIL_CALIBRATION_REF_MS there): the guest
+# measures how much slower this host runs it (calibrate in guest-test.sh, "HIL CALIBRATION ...
+# scale_pct=N", at most HIL_SCALE_MAX_PCT) and the whole run's limit, HIL_TIMEOUT, is stretched
+# by the same factor once that line is in. Before it, the boot and the calibration get
+# boot_limit_s. timeout_max_s is the hard stop whatever the calibration says (ctest's TIMEOUT in
+# hil.cmake is above it).
+timeout_s=${HIL_TIMEOUT:-400}
+calibration_ref_ms=${HIL_CALIBRATION_REF_MS:-15000}
+scale_max_pct=${HIL_SCALE_MAX_PCT:-400}
+boot_limit_s=300
+timeout_max_s=$((timeout_s * scale_max_pct / 100 + boot_limit_s))
 
 # The checks the guest runs, in order; each must print "HIL PASS name" (HIL_CHECKS="a b": only
 # those). Without packaging: the devices one by one (cam, gpiomon, a shell on ttyS1) and the
@@ -77,6 +88,8 @@ HIL_CHECKS="$checks"
 HIL_PACKAGE=$package
 HIL_SERVICE_TYPE=${HIL_SERVICE_TYPE:-}
 HIL_FLOOD_BYTES=${HIL_FLOOD_BYTES:-1048576}
+HIL_CALIBRATION_REF_MS=$calibration_ref_ms
+HIL_SCALE_MAX_PCT=$scale_max_pct
 ENV
 
 # systemd as PID 1 in the guest (HIL_SYSTEMD=0: a plain shell script as init, no units).
@@ -89,7 +102,7 @@ qemu_log=$results/qemu.log
 hil_say "booting $HIL_VMLINUZ in qemu (TCG), log: $qemu_log"
 start=$SECONDS
 # serial0 = the kernel console and the check lines (stdio); serial1 = the mirror's console (pty).
-timeout --kill-after=10 "$timeout_s" qemu-system-x86_64 \
+timeout --kill-after=10 "$timeout_max_s" qemu-system-x86_64 \
     -accel tcg -cpu max -m 2G -smp 2 -nographic -vga none -no-reboot \
     -kernel "$HIL_VMLINUZ" -initrd "$work/initramfs-$HIL_KVER.cpio.gz" \
     -append "console=ttyS0 panic=-1 loglevel=4 hil_script=$here/guest-test.sh hil_results=/hil-results $boot_args" \
@@ -99,14 +112,38 @@ timeout --kill-after=10 "$timeout_s" qemu-system-x86_64 \
     </dev/null >"$qemu_log" 2>&1 &
 qemu=$!
 
+# flood MAX: random bytes on fd 4 (the pty) in 4 KiB pieces, as many as the guest takes in 15 s
+# at the rate measured over the first 5 s (a write blocks while the guest's UART is full), at
+# least 64 KiB, at most MAX, and ended at 60 s whatever the rate (console_round allows for that);
+# prints what it wrote.
+flood() {
+    local max=$1 min=65536 piece=4096 written=0 total=$1 rate=
+    local t0=${EPOCHREALTIME/./} us
+    while ((written < total)); do
+        head -c "$piece" /dev/urandom >&4 || break
+        written=$((written + piece))
+        us=$((${EPOCHREALTIME/./} - t0))
+        if [ -z "$rate" ] && ((us >= 5000000)); then
+            rate=$((written * 1000000 / us))  # bytes per second
+            total=$((rate * 15))
+            ((total >= min)) || total=$min
+            ((total <= max)) || total=$max
+        fi
+        ((us < 60000000 || written < min)) || break
+    done
+    us=$((${EPOCHREALTIME/./} - t0))
+    echo "flood of $written bytes written in $((us / 1000000)).$((us / 100000 % 10)) s" \
+        "(${rate:+$((rate / 1024)) KiB/s over the first 5 s; }sized for 15 s, 64 KiB..$((max / 1024)) KiB)"
+}
+
 # The host end of ttyS1, one round at a time: once the guest wrote console.send (lines to type;
-# "@flood N" = N random bytes), console.expect (an extended regex) and console.wait (seconds),
-# and created console.ready (which the driver removes), type each line with Enter, keep
-# everything read in console.txt until the pattern shows up (or the wait is over), then create
-# console.done.
+# "@flood N" = at most N random bytes, see flood), console.expect (an extended regex) and
+# console.wait (seconds), and created console.ready (which the driver removes), type each line
+# with Enter, keep everything read in console.txt until the pattern shows up (or the wait is
+# over), then create console.done.
 console_driver() {
-    local pty deadline=$((SECONDS + timeout_s)) line wait
-    while kill -0 $qemu 2>/dev/null && ((SECONDS < deadline)); do
+    local pty line wait
+    while kill -0 $qemu 2>/dev/null; do
         if [ ! -e "$results/console.ready" ]; then
             sleep 0.5
             continue
@@ -125,11 +162,7 @@ console_driver() {
         local reader=$!
         while IFS= read -r line; do
             case $line in
-            '@flood '*)
-                local t0=$SECONDS
-                head -c "${line#@flood }" /dev/urandom >&4
-                echo "flood of ${line#@flood } bytes written in $((SECONDS - t0)) s" >"$results/console.flood"
-                ;;
+            '@flood '*) flood "${line#@flood }" >"$results/console.flood" ;;
             *) printf '%s\r' "$line" >&4 ;;
             esac
             sleep 1
@@ -149,6 +182,25 @@ console_driver() {
 console_driver &
 driver=$!
 
+# The run's limit: boot_limit_s until the guest's calibration line, then timeout_s stretched by
+# its scale. Past it the machine is stopped (qemu_limit says so).
+calibration= limit=$boot_limit_s stopped_at_limit=0
+while kill -0 $qemu 2>/dev/null; do
+    if [ -z "$calibration" ]; then
+        calibration=$(grep -ao 'HIL CALIBRATION .*' "$qemu_log" | tr -d '\r' | head -1) || true
+        if [ -n "$calibration" ]; then
+            scale=$(sed -E 's/.*scale_pct=([0-9]+).*/\1/' <<<"$calibration")
+            limit=$((SECONDS - start + timeout_s * scale / 100))
+            hil_say "${calibration#HIL CALIBRATION }: the run's limit is $limit s"
+        fi
+    fi
+    if ((SECONDS - start > limit)); then
+        stopped_at_limit=1
+        kill $qemu 2>/dev/null || true
+        break
+    fi
+    sleep 1
+done
 status=0
 wait $qemu || status=$?
 kill $driver 2>/dev/null || true
@@ -167,10 +219,23 @@ if grep -qx 'HIL PASS snapshot_drm' "$results/summary.txt"; then
         echo "HIL FAIL snapshot_image: $(echo $why)" >>"$results/summary.txt"
     fi
 fi
-[ -f "$results/console.flood" ] && hil_say "$(cat "$results/console.flood")"
+[ -s "$results/flood.txt" ] && hil_say "$(cat "$results/flood.txt")"
 cat "$results/summary.txt"
+# How long each check took (guest seconds), and the check that never ended if one did not.
+grep -ao 'HIL TIME [^ ]* [0-9.]*' "$qemu_log" | tr -d '\r' >"$results/times.txt" || true
+hil_say "check times (s): $(awk '{printf "%s%s %s", (NR > 1 ? ", " : ""), $3, $4}' "$results/times.txt")"
+running=$(grep -ao 'HIL START [^ ]*' "$qemu_log" | tr -d '\r' | tail -1 | cut -d' ' -f3) || true
 fail=0
-((status == 0)) || { hil_say "qemu exited with $status after ${elapsed}s (124 = timeout ${timeout_s}s)"; fail=1; }
+if ((stopped_at_limit)); then
+    hil_say "stopped the machine at its limit of ${limit}s (${calibration:-no calibration line by then})"
+    fail=1
+elif ((status != 0)); then
+    hil_say "qemu exited with $status after ${elapsed}s (124 = the hard stop at ${timeout_max_s}s)"
+    fail=1
+fi
+if [ -n "$running" ] && ! grep -q "^HIL TIME $running " "$results/times.txt"; then
+    hil_say "check $running was still running"
+fi
 grep -q '^HIL FAIL' "$results/summary.txt" && fail=1
 for c in $checks; do
     grep -qx "HIL PASS $c" "$results/summary.txt" || { hil_say "missing: HIL PASS $c"; fail=1; }
@@ -182,4 +247,4 @@ if ((fail)); then
     tail -n 30 "$qemu_log" | tr -d '\r' >&2
     exit 1
 fi
-hil_say "all $(wc -w <<<"$checks") checks passed in ${elapsed}s"
+hil_say "all $(wc -w <<<"$checks") checks passed in ${elapsed}s (${calibration#HIL CALIBRATION }, limit ${limit}s)"
