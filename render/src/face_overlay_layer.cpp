@@ -1,6 +1,9 @@
 #include "render/face_overlay_layer.hpp"
 
+#include "face_overlay_shaders.hpp"
 #include "gl_program.hpp"
+#include "overlay_placement.hpp"
+#include "window_bounds.hpp"
 
 #include <GLES2/gl2.h>
 
@@ -15,253 +18,10 @@
 #include <vector>
 
 namespace render {
-namespace {
 
-// Lighting per vertex (Gouraud): the meshes are dense enough that it looks the same as per
-// fragment, and llvmpipe spends its time on fragments (hats cover much of the screen). Untextured
-// meshes (all of the project's) get their final colour per vertex, so their fragment shader only
-// passes one varying through; textured ones use a second program (TEXTURED defined) that
-// multiplies the texture in per fragment. Two programs rather than a uniform branch: llvmpipe runs
-// the texture fetch of an untaken branch on every fragment anyway.
-constexpr const char* kShadeVertexShader = R"(
-attribute vec3 aPosition;  // model axes and units
-attribute vec3 aNormal;
-uniform mat4 uModelView;   // model -> camera frame (metres, x right, y down, z forward)
-uniform mat4 uProjection;  // camera frame -> clip, mirrored and cropped as the video
-uniform mat3 uNormalMatrix;
-uniform vec3 uLightDirection;  // towards the light, camera frame, unit
-uniform vec3 uLight;           // ambient, diffuse, specular, already times the face's brightness
-uniform float uShininess;      // 0: matt
-#ifdef TEXTURED
-attribute vec2 aUv;
-varying vec3 vDiffuse;   // multiplies the material colour
-varying vec3 vSpecular;  // added
-varying vec2 vUv;
-#else
-uniform vec4 uColor;     // the material's, alpha already times the face's fade
-varying vec4 vColor;
-#endif
-void main()
-{
-    vec4 p = uModelView * vec4(aPosition, 1.0);
-    vec3 n = normalize(uNormalMatrix * aNormal);
-    vec3 view = normalize(-p.xyz);
-    // Two-sided: the side of the surface the camera sees.
-    if (dot(n, view) < 0.0)
-        n = -n;
-    vec3 diffuse = vec3(uLight.x + uLight.y * max(dot(n, uLightDirection), 0.0));
-    vec3 specular = vec3(0.0);
-    if (uShininess > 0.0) {
-        vec3 h = normalize(uLightDirection + view);
-        specular = vec3(uLight.z * pow(max(dot(n, h), 0.0), uShininess));
-    }
-#ifdef TEXTURED
-    vDiffuse = diffuse;
-    vSpecular = specular;
-    vUv = aUv;
-#else
-    vColor = vec4(min(uColor.rgb * diffuse + specular, vec3(1.0)), uColor.a);
-#endif
-    gl_Position = uProjection * p;
-}
-)";
-
-constexpr const char* kShadeFragmentShader = R"(
-precision mediump float;
-#ifdef TEXTURED
-uniform vec4 uColor;  // the material's, alpha already times the face's fade
-uniform sampler2D uTexture;
-varying vec3 vDiffuse;
-varying vec3 vSpecular;
-varying vec2 vUv;
-void main()
-{
-    vec4 base = uColor * texture2D(uTexture, vUv);
-    gl_FragColor = vec4(min(base.rgb * vDiffuse + vSpecular, vec3(1.0)), base.a);
-}
-#else
-varying vec4 vColor;
-void main()
-{
-    gl_FragColor = vColor;
-}
-#endif
-)";
-
-constexpr const char* kDepthVertexShader = R"(#version 100
-attribute vec3 aPosition;
-uniform mat4 uModelViewProjection;
-void main()
-{
-    gl_Position = uModelViewProjection * vec4(aPosition, 1.0);
-}
-)";
-
-constexpr const char* kDepthFragmentShader = R"(#version 100
-precision mediump float;
-void main()
-{
-    gl_FragColor = vec4(0.0);
-}
-)";
-
-constexpr float kDegrees = 3.14159265358979f / 180.f;
-// 224 triangles: llvmpipe's cost is per triangle, and the silhouette stays within 2 % of the
-// head's radius (1 - cos 11.25 degrees).
-constexpr int kProxySegments = 16;  // around the vertical axis
-constexpr int kProxyRings = 8;      // pole to pole
-
-// The head frame of vision/head_pose.hpp (y down, z into the head) from the model axes of the
-// catalogue (y up, z towards the camera): a half turn about x.
-const Eigen::Matrix3f kModelToHeadAxes = Eigen::Vector3f(1.f, -1.f, -1.f).asDiagonal();
-
-Eigen::Vector3f toVector(const std::array<float, 3>& a)
-{
-    return {a[0], a[1], a[2]};
-}
-
-// The head proxy of unit semi-axes as a triangle list (positions only): a sphere whose
-// horizontal sections are superellipses of exponent `n` (HeadModel::proxySquareness). Wound
-// counter-clockwise seen from outside like the closed overlay meshes, so its back half is culled
-// (it is convex: the front half is the nearer one everywhere), and without the zero-area
-// triangles at the poles.
-std::vector<float> unitProxy(float n)
-{
-    std::vector<float> out;
-    auto superPower = [n](float c) { return std::copysign(std::pow(std::fabs(c), 2.f / n), c); };
-    auto point = [&](int ring, int segment) {
-        const float theta = static_cast<float>(ring) * 180.f / kProxyRings * kDegrees;
-        const float phi = static_cast<float>(segment) * 360.f / kProxySegments * kDegrees;
-        out.push_back(std::sin(theta) * superPower(std::cos(phi)));
-        out.push_back(std::cos(theta));
-        out.push_back(std::sin(theta) * superPower(std::sin(phi)));
-    };
-    for (int r = 0; r < kProxyRings; ++r)
-        for (int s = 0; s < kProxySegments; ++s) {
-            // Ring r + 1 is below ring r, segment s + 1 is further round towards +z.
-            if (r + 1 < kProxyRings) {
-                point(r, s);
-                point(r + 1, s + 1);
-                point(r + 1, s);
-            }
-            if (r > 0) {
-                point(r, s);
-                point(r, s + 1);
-                point(r + 1, s + 1);
-            }
-        }
-    return out;
-}
-
-// "#version 100" (which must come first), the defines, then the shader.
-std::string shaderSource(bool textured, const char* body)
-{
-    return std::string("#version 100\n") + (textured ? "#define TEXTURED\n" : "") + body;
-}
-
-struct Affine {
-    Eigen::Matrix3f linear;
-    Eigen::Vector3f translation;
-};
-
-// Model units -> head frame metres for one overlay (FORMAT.md: rotate x, y, z, add the offset,
-// scale by scale * measure, put at the anchor).
-Affine modelToHead(const Overlay& overlay, const HeadModel& head)
-{
-    const float w = head.faceWidthMetres;
-    const float measure =
-        overlay.measure == HeadMeasure::Interocular ? w * head.interocularPerFaceWidth : w;
-    const float s = overlay.scale * measure;
-    const Eigen::Matrix3f rotation =
-        (Eigen::AngleAxisf(overlay.rotationDegrees[2] * kDegrees, Eigen::Vector3f::UnitZ()) *
-         Eigen::AngleAxisf(overlay.rotationDegrees[1] * kDegrees, Eigen::Vector3f::UnitY()) *
-         Eigen::AngleAxisf(overlay.rotationDegrees[0] * kDegrees, Eigen::Vector3f::UnitX()))
-            .toRotationMatrix();
-    const std::array<float, 3>* anchor = &head.eyeMidpoint;
-    switch (overlay.anchor) {
-        case OverlayAnchor::EyeMidpoint:
-            anchor = &head.eyeMidpoint;
-            break;
-        case OverlayAnchor::NoseBridge:
-            anchor = &head.noseBridge;
-            break;
-        case OverlayAnchor::ForeheadTop:
-            anchor = &head.foreheadTop;
-            break;
-        case OverlayAnchor::HeadTop:
-            anchor = &head.headTop;
-            break;
-    }
-    return {s * kModelToHeadAxes * rotation,
-            kModelToHeadAxes * (toVector(*anchor) * w + s * toVector(overlay.offset))};
-}
-
-// A rectangle of window pixels, x0 <= x < x1, y0 <= y < y1, y up (glScissor's).
-struct PixelRect {
-    int x0 = 0;
-    int y0 = 0;
-    int x1 = 0;
-    int y1 = 0;
-    long area() const noexcept { return static_cast<long>(x1 - x0) * (y1 - y0); }
-    bool intersects(const PixelRect& o) const noexcept
-    {
-        return x0 < o.x1 && o.x0 < x1 && y0 < o.y1 && o.y0 < y1;
-    }
-    PixelRect intersection(const PixelRect& o) const noexcept
-    {
-        return {std::max(x0, o.x0), std::max(y0, o.y0), std::min(x1, o.x1), std::min(y1, o.y1)};
-    }
-    PixelRect hull(const PixelRect& o) const noexcept
-    {
-        return {std::min(x0, o.x0), std::min(y0, o.y0), std::max(x1, o.x1), std::max(y1, o.y1)};
-    }
-    void scissor() const noexcept { glScissor(x0, y0, x1 - x0, y1 - y0); }
-};
-
-// The window pixels that triangles with corners `points` can cover when drawn with
-// `modelViewProjection` into `viewport`: the projected points' bounds (a triangle in front of the
-// camera projects to the triangle of its projected corners) plus a pixel. The whole viewport when
-// a point is not in front of the camera.
-PixelRect windowBounds(const Eigen::Matrix4f& modelViewProjection,
-                       const std::vector<Eigen::Vector3f>& points,
-                       const PixelRect& viewport) noexcept
-{
-    Eigen::Matrix<float, 3, 4> xyw;  // clip x, y and w; z is not needed
-    xyw << modelViewProjection.row(0), modelViewProjection.row(1), modelViewProjection.row(3);
-    Eigen::Vector2f lo(INFINITY, INFINITY);
-    Eigen::Vector2f hi(-INFINITY, -INFINITY);
-    for (const Eigen::Vector3f& p : points) {
-        const Eigen::Vector3f clip = xyw.leftCols<3>() * p + xyw.col(3);
-        if (!(clip.z() > 1e-6f))
-            return viewport;
-        const Eigen::Vector2f ndc = clip.head<2>() / clip.z();
-        lo = lo.cwiseMin(ndc);
-        hi = hi.cwiseMax(ndc);
-    }
-    if (!(lo.minCoeff() > -1e4f && hi.maxCoeff() < 1e4f))
-        return viewport;  // no points, NaN or absurd: do not trust it
-    const float sx = 0.5f * static_cast<float>(viewport.x1 - viewport.x0);
-    const float sy = 0.5f * static_cast<float>(viewport.y1 - viewport.y0);
-    const PixelRect bounds{viewport.x0 + static_cast<int>(std::floor((lo.x() + 1.f) * sx)) - 1,
-                           viewport.y0 + static_cast<int>(std::floor((lo.y() + 1.f) * sy)) - 1,
-                           viewport.x0 + static_cast<int>(std::ceil((hi.x() + 1.f) * sx)) + 1,
-                           viewport.y0 + static_cast<int>(std::ceil((hi.y() + 1.f) * sy)) + 1};
-    return bounds.intersection(viewport);
-}
-
-// The distinct points of a triangle list of xyz floats.
-std::vector<Eigen::Vector3f> distinctPoints(std::vector<std::array<float, 3>> points)
-{
-    std::sort(points.begin(), points.end());
-    points.erase(std::unique(points.begin(), points.end()), points.end());
-    std::vector<Eigen::Vector3f> out;
-    out.reserve(points.size());
-    for (const auto& p : points)
-        out.emplace_back(p[0], p[1], p[2]);
-    return out;
-}
-
-}  // namespace
+using detail::Affine;
+using detail::PixelRect;
+using detail::toVector;
 
 struct FaceOverlayLayer::Gl {
     struct Mesh {
@@ -279,8 +39,8 @@ struct FaceOverlayLayer::Gl {
     struct Shade {  // one of the two overlay programs and its uniforms
         explicit Shade(bool textured)
             : program(textured ? "textured overlay" : "overlay",
-                      shaderSource(textured, kShadeVertexShader).c_str(),
-                      shaderSource(textured, kShadeFragmentShader).c_str(),
+                      detail::shaderSource(textured, detail::kShadeVertexShader).c_str(),
+                      detail::shaderSource(textured, detail::kShadeFragmentShader).c_str(),
                       {"aPosition", "aNormal", "aUv"}),
               textureUnit(textured ? program.uniform("uTexture") : -1)
         {
@@ -300,7 +60,8 @@ struct FaceOverlayLayer::Gl {
     Shade lit{false};
     Shade textured{true};
 
-    detail::GlProgram depth{"head proxy", kDepthVertexShader, kDepthFragmentShader, {"aPosition"}};
+    detail::GlProgram depth{"head proxy", detail::kDepthVertexShader, detail::kDepthFragmentShader,
+                           {"aPosition"}};
     GLint modelViewProjection = depth.uniform("uModelViewProjection");
     detail::GlBuffer proxy;
     detail::GlBuffer proxyIndices;
@@ -404,7 +165,7 @@ FaceOverlayLayer::FaceOverlayLayer(const OverlayCatalogue& catalogue,
         for (const OverlayMesh& mesh : overlay.meshes)
             for (const OverlayVertex& v : mesh.vertices)
                 positions.push_back({v.position[0], v.position[1], v.position[2]});
-        part.points = distinctPoints(std::move(positions));
+        part.points = detail::distinctPoints(std::move(positions));
         for (const OverlayMesh& mesh : overlay.meshes) {
             Gl::Mesh m;
             m.vertices = std::make_unique<detail::GlBuffer>();
@@ -438,18 +199,9 @@ FaceOverlayLayer::FaceOverlayLayer(const OverlayCatalogue& catalogue,
     }
     if (!(options.head.proxySquareness >= 1.f && options.head.proxySquareness <= 10.f))
         throw std::runtime_error("FaceOverlayLayer: head proxy squareness must be in [1, 10]");
-    // Indexed: each distinct vertex is transformed once.
-    const std::vector<float> sphere = unitProxy(options.head.proxySquareness);
-    std::vector<std::array<float, 3>> corners;
-    for (std::size_t i = 0; i + 2 < sphere.size(); i += 3)
-        corners.push_back({sphere[i], sphere[i + 1], sphere[i + 2]});
-    std::vector<std::array<float, 3>> distinct = corners;
-    std::sort(distinct.begin(), distinct.end());
-    distinct.erase(std::unique(distinct.begin(), distinct.end()), distinct.end());
-    std::vector<std::uint16_t> indices;
-    for (const auto& corner : corners)
-        indices.push_back(static_cast<std::uint16_t>(
-            std::lower_bound(distinct.begin(), distinct.end(), corner) - distinct.begin()));
+    const HeadProxyMesh proxy = unitHeadProxy(options.head.proxySquareness);
+    const std::vector<std::array<float, 3>>& distinct = proxy.points;
+    const std::vector<std::uint16_t>& indices = proxy.indices;
     gl_->proxyCount = static_cast<GLsizei>(indices.size());
     for (const auto& p : distinct)
         gl_->proxyPoints.emplace_back(p[0], p[1], p[2]);
@@ -631,8 +383,8 @@ void FaceOverlayLayer::draw(const LayerContext& context) noexcept
     const HeadModel& head = options_.head;
     const float w = head.faceWidthMetres;
     const Eigen::Matrix3f proxyAxes =
-        kModelToHeadAxes * (toVector(head.proxySemiAxes) * w).asDiagonal();
-    const Eigen::Vector3f proxyCentre = kModelToHeadAxes * toVector(head.proxyCentre) * w;
+        modelToHeadAxes() * (toVector(head.proxySemiAxes) * w).asDiagonal();
+    const Eigen::Vector3f proxyCentre = modelToHeadAxes() * toVector(head.proxyCentre) * w;
     GLint v[4] = {0, 0, 0, 0};  // what window pixels the NDC map to (the renderer's glViewport)
     glGetIntegerv(GL_VIEWPORT, v);
     const PixelRect viewport{v[0], v[1], v[0] + v[2], v[1] + v[3]};
@@ -640,7 +392,7 @@ void FaceOverlayLayer::draw(const LayerContext& context) noexcept
     for (int i = 0; i < count; ++i) {
         Drawn& face = drawn[static_cast<std::size_t>(i)];
         const Gl::Part& part = gl_->overlays[static_cast<std::size_t>(face.selection->overlay)];
-        const Affine model = modelToHead(part.placement, head);
+        const Affine model = detail::modelToHead(part.placement, head);
         face.modelView.setIdentity();
         face.modelView.topLeftCorner<3, 3>() = face.pose.rotation * model.linear;
         face.modelView.topRightCorner<3, 1>() =
@@ -649,9 +401,9 @@ void FaceOverlayLayer::draw(const LayerContext& context) noexcept
         face.proxyModelView.topLeftCorner<3, 3>() = face.pose.rotation * proxyAxes;
         face.proxyModelView.topRightCorner<3, 1>() =
             face.pose.rotation * proxyCentre + face.pose.translation;
-        face.overlayPixels = windowBounds(projection * face.modelView, part.points, viewport);
+        face.overlayPixels = detail::windowBounds(projection * face.modelView, part.points, viewport);
         face.proxyPixels =
-            windowBounds(projection * face.proxyModelView, gl_->proxyPoints, viewport);
+            detail::windowBounds(projection * face.proxyModelView, gl_->proxyPoints, viewport);
         overlayArea += face.overlayPixels.area();
     }
 

@@ -7,7 +7,10 @@
 // midpoint. They map to the head frame of vision/head_pose.hpp (y down, z into the head) by
 // (x, -y, -z) * W.
 
+#include <Eigen/Core>
 #include <array>
+#include <cstdint>
+#include <vector>
 
 namespace render {
 
@@ -28,5 +31,21 @@ struct HeadModel {
     std::array<float, 3> proxySemiAxes{0.5f, 0.8f, 0.62f};
     float proxySquareness = 3.f;
 };
+
+/// The head proxy of unit semi-axes and exponent `squareness` (HeadModel::proxySquareness) as an
+/// indexed triangle mesh in the model axes: each distinct corner once (sorted), three indices a
+/// triangle, wound counter-clockwise seen from outside. Made once at start-up.
+struct HeadProxyMesh {
+    std::vector<std::array<float, 3>> points;
+    std::vector<std::uint16_t> indices;
+};
+HeadProxyMesh unitHeadProxy(float squareness);
+
+/// The head frame of vision/head_pose.hpp (y down, z into the head) from the model axes above
+/// (y up, z towards the camera): a half turn about x.
+inline Eigen::Matrix3f modelToHeadAxes()
+{
+    return Eigen::Vector3f(1.f, -1.f, -1.f).asDiagonal();
+}
 
 }  // namespace render

@@ -1,0 +1,69 @@
+#include "render/head_model.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace render {
+
+namespace {
+
+constexpr float kDegrees = 3.14159265358979f / 180.f;
+// 224 triangles: llvmpipe's cost is per triangle, and the silhouette stays within 2 % of the
+// head's radius (1 - cos 11.25 degrees).
+constexpr int kProxySegments = 16;  // around the vertical axis
+constexpr int kProxyRings = 8;      // pole to pole
+
+// The head proxy of unit semi-axes as a triangle list (positions only): a sphere whose
+// horizontal sections are superellipses of exponent `n` (HeadModel::proxySquareness). Wound
+// counter-clockwise seen from outside like the closed overlay meshes, so its back half is culled
+// (it is convex: the front half is the nearer one everywhere), and without the zero-area
+// triangles at the poles.
+std::vector<float> unitProxyTriangles(float n)
+{
+    std::vector<float> out;
+    auto superPower = [n](float c) { return std::copysign(std::pow(std::fabs(c), 2.f / n), c); };
+    auto point = [&](int ring, int segment) {
+        const float theta = static_cast<float>(ring) * 180.f / kProxyRings * kDegrees;
+        const float phi = static_cast<float>(segment) * 360.f / kProxySegments * kDegrees;
+        out.push_back(std::sin(theta) * superPower(std::cos(phi)));
+        out.push_back(std::cos(theta));
+        out.push_back(std::sin(theta) * superPower(std::sin(phi)));
+    };
+    for (int r = 0; r < kProxyRings; ++r)
+        for (int s = 0; s < kProxySegments; ++s) {
+            // Ring r + 1 is below ring r, segment s + 1 is further round towards +z.
+            if (r + 1 < kProxyRings) {
+                point(r, s);
+                point(r + 1, s + 1);
+                point(r + 1, s);
+            }
+            if (r > 0) {
+                point(r, s);
+                point(r, s + 1);
+                point(r + 1, s + 1);
+            }
+        }
+    return out;
+}
+
+}  // namespace
+
+HeadProxyMesh unitHeadProxy(float squareness)
+{
+    // Indexed: each distinct vertex is transformed once.
+    const std::vector<float> sphere = unitProxyTriangles(squareness);
+    std::vector<std::array<float, 3>> corners;
+    for (std::size_t i = 0; i + 2 < sphere.size(); i += 3)
+        corners.push_back({sphere[i], sphere[i + 1], sphere[i + 2]});
+    HeadProxyMesh mesh;
+    mesh.points = corners;
+    std::sort(mesh.points.begin(), mesh.points.end());
+    mesh.points.erase(std::unique(mesh.points.begin(), mesh.points.end()), mesh.points.end());
+    for (const auto& corner : corners)
+        mesh.indices.push_back(static_cast<std::uint16_t>(
+            std::lower_bound(mesh.points.begin(), mesh.points.end(), corner) -
+            mesh.points.begin()));
+    return mesh;
+}
+
+}  // namespace render

@@ -1,0 +1,44 @@
+#include "overlay_placement.hpp"
+
+#include <Eigen/Geometry>
+
+namespace render::detail {
+
+namespace {
+
+constexpr float kDegrees = 3.14159265358979f / 180.f;
+
+}  // namespace
+
+// FORMAT.md: rotate x, y, z, add the offset, scale by scale * measure, put at the anchor.
+Affine modelToHead(const Overlay& overlay, const HeadModel& head)
+{
+    const float w = head.faceWidthMetres;
+    const float measure =
+        overlay.measure == HeadMeasure::Interocular ? w * head.interocularPerFaceWidth : w;
+    const float s = overlay.scale * measure;
+    const Eigen::Matrix3f rotation =
+        (Eigen::AngleAxisf(overlay.rotationDegrees[2] * kDegrees, Eigen::Vector3f::UnitZ()) *
+         Eigen::AngleAxisf(overlay.rotationDegrees[1] * kDegrees, Eigen::Vector3f::UnitY()) *
+         Eigen::AngleAxisf(overlay.rotationDegrees[0] * kDegrees, Eigen::Vector3f::UnitX()))
+            .toRotationMatrix();
+    const std::array<float, 3>* anchor = &head.eyeMidpoint;
+    switch (overlay.anchor) {
+        case OverlayAnchor::EyeMidpoint:
+            anchor = &head.eyeMidpoint;
+            break;
+        case OverlayAnchor::NoseBridge:
+            anchor = &head.noseBridge;
+            break;
+        case OverlayAnchor::ForeheadTop:
+            anchor = &head.foreheadTop;
+            break;
+        case OverlayAnchor::HeadTop:
+            anchor = &head.headTop;
+            break;
+    }
+    return {s * modelToHeadAxes() * rotation,
+            modelToHeadAxes() * (toVector(*anchor) * w + s * toVector(overlay.offset))};
+}
+
+}  // namespace render::detail

@@ -1,0 +1,26 @@
+#pragma once
+// Where an overlay of the catalogue sits on the head model: model units to head-frame metres.
+
+#include "render/head_model.hpp"
+#include "render/overlay_catalogue.hpp"
+
+#include <Eigen/Core>
+#include <array>
+
+namespace render::detail {
+
+/// x -> linear * x + translation.
+struct Affine {
+    Eigen::Matrix3f linear;
+    Eigen::Vector3f translation;
+};
+
+inline Eigen::Vector3f toVector(const std::array<float, 3>& a)
+{
+    return {a[0], a[1], a[2]};
+}
+
+/// Model units -> head frame metres for one overlay (assets/overlays/FORMAT.md).
+Affine modelToHead(const Overlay& overlay, const HeadModel& head);
+
+}  // namespace render::detail
