@@ -1,5 +1,5 @@
 #pragma once
-// The face benchmarks of issue 4, ours beside the peer (OpenCV, one thread), on real frames of the
+// The face benchmarks (§3), ours beside the peer (OpenCV, one thread), on real frames of the
 // FGNet talking face (../shared/data/fgnet_talking_face/images, 720x576 JPEG):
 //  - Viola-Jones full-frame detection at 360x240 (frame 0, its middle 720x480 shrunk by 2), our
 //    FaceDetector against cv::CascadeClassifier::detectMultiScale with the same cascade,

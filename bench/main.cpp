@@ -1,12 +1,12 @@
 // mirror-bench: ours side by side with the peers, on one core. Without --ratios it is a normal
 // Google Benchmark binary (every --benchmark_* flag works); with --ratios it times the target
-// pairs of issues 3 and 4 and the overlays' cost (issue 5) itself and prints one
+// pairs (chromaticity and card, faces) and the overlays' cost itself and prints one
 // `ratio <name> <value>` line per target.
 //
 // Own flags (removed before Google Benchmark sees the command line):
 //   --ratios        print raw times and the target ratios, then exit
-//   --ratios=chroma only issue 3's (chromaticity, card tracker); --ratios=faces only issue 4's;
-//   --ratios=render only issue 5's (3D overlays of 3 faces, headless GL)
+//   --ratios=chroma only chromaticity and the card tracker; --ratios=faces only the faces;
+//   --ratios=render only the 3D overlays of 3 faces (headless GL)
 //   --image=PATH    the photograph the frames are made from (default: ../shared/data astronaut)
 //   --overlays=PATH the overlay catalogue --ratios times (default: assets/overlays/catalogue.toml)
 

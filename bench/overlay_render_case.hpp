@@ -1,5 +1,5 @@
 #pragma once
-// The 3D overlays' cost per frame (issue 5: "rendering adds at most 2 ms for 3 faces with
+// The 3D overlays' cost per frame (the product's budget: "rendering adds at most 2 ms for 3 faces with
 // overlays, headless, software GL"): the renderer drawing a 1280x720 frame into a 1280x720 FBO with
 // depth, once with three faces wearing the catalogue's three heaviest overlays and once with no
 // face, on a surfaceless EGL context (Mesa llvmpipe here). llvmpipe is told to rasterise on the

@@ -1,6 +1,6 @@
 #pragma once
 // The IMM face database's frontal photographs (types 1 and 2 of 40 people, 58 landmarks each),
-// rotated under issue 4's `mirror-eval roll` protocol: a square crop of 3x the eye-to-mouth
+// rotated under `mirror-eval roll`'s protocol: a square crop of 3x the eye-to-mouth
 // distance about the face centre, border replicated, rotated about that centre by a seeded angle
 // in [-30, 30] degrees, landmarks with it. Truth: the best line through eye midpoint, nose tip and
 // mouth centre. Face boxes (a) from cv::CascadeClassifier (haarcascade_frontalface_default) on the

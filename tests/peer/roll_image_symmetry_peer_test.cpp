@@ -1,5 +1,5 @@
-// Roll by dense image symmetry (RollByImageSymmetry) on the IMM frontal faces rotated under issue
-// 4's `mirror-eval roll` protocol (imm_rotated_faces.hpp), at their own size and shrunk to the
+// Roll by dense image symmetry (RollByImageSymmetry) on the IMM frontal faces rotated under
+// `mirror-eval roll`'s protocol (imm_rotated_faces.hpp), at their own size and shrunk to the
 // size of the scanned CMU/MIT faces. This is where the estimator's defaults were chosen; CMU/MIT
 // is only scored.
 
@@ -91,7 +91,7 @@ TEST(RollImageSymmetryPeer, ImmFrontalFacesRotatedUpTo30Degrees)
             score(samples, oneBlur, "one blur pass");
         }
 
-        // Issue 4's targets (mean <= 4.0 degrees, >= 85% within 5) with margin, on both kinds of
+        // The product's targets (mean <= 4.0 degrees, >= 85% within 5) with margin, on both kinds of
         // box.
         ASSERT_GE(ours.cascade.values.size(), 55u);
         EXPECT_LE(ours.cascade.mean(), 3.0);

@@ -1,4 +1,4 @@
-// Roll by point symmetry (METHOD.md §4) on the IMM frontal faces rotated under issue 4's
+// Roll by point symmetry (METHOD.md §4) on the IMM frontal faces rotated under mirror-eval's
 // `mirror-eval roll` protocol (imm_rotated_faces.hpp). Corners: cv::goodFeaturesToTrack in the
 // face box (a stand-in for our own Shi-Tomasi): at most 60 (and, second, 40) corners, none closer
 // than 1/20 of the box side. Also scored: the dissertation's own variant (whole degrees, plain
@@ -101,7 +101,7 @@ TEST(RollLandmarksPeer, ImmFrontalFacesRotatedUpTo30Degrees)
     detected.report("cascade-box");
     fromLandmarks.report("landmark-box");
 
-    // Issue 4's targets (mean <= 4.0 degrees, >= 85% within 5; the dissertation had 6.0 and 73%),
+    // The product's targets (mean <= 4.0 degrees, >= 85% within 5; the dissertation had 6.0 and 73%),
     // on the faces the cascade finds and on every face with a jittered box.
     ASSERT_GE(detected.symmetry60.values.size(), 55u);
     for (const Results* r : {&detected, &fromLandmarks}) {

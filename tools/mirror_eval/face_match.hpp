@@ -10,7 +10,7 @@
 // track: our box against the truth box by intersection over union (IoU >= 0.5), paired one to
 // one, highest IoU first. A face partly out of view is optional (matched by its box or by its part
 // in view; neither a true nor a false positive, and missing it is no false negative). With
-// landmark truth (FGNet) the truth box is the landmarks' bounding box, as issue 4 says; our face
+// landmark truth (FGNet) the truth box is the landmarks' bounding box, as the product's targets say; our face
 // box is a Viola-Jones square, which runs from the forehead to below the mouth while the landmarks
 // run from the eyebrows to the chin (a correctly placed square scores only about 0.5 against
 // them), so it is first turned into the box its face's landmarks would have

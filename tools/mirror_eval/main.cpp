@@ -1,5 +1,5 @@
 // mirror-eval: evaluates the vision core on recorded or generated sequences with ground truth.
-// One sub-command per tracker: `card` (issue 3), `detect`, `roll` and `track` (issue 4).
+// One sub-command per tracker: `card` (§2), `detect` and `track` (§3), `roll` (§4).
 
 #include "card_eval.hpp"
 #include "detect_eval.hpp"

@@ -34,7 +34,7 @@ struct Crop {
     double rotation = 0.0;
 };
 
-/// The crop: side 3x the eye-mouth distance about the face centre, rotated about it by
+/// The protocol's crop: side 3x the eye-mouth distance about the face centre, rotated about it by
 /// `rotation` degrees (clockwise on screen, our roll sense), border replicated; resampled up to
 /// `minSide` when smaller.
 Crop makeCrop(const cv::Mat& image, const LandmarkFace& face, double rotation, int minSide)

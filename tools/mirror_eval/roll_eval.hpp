@@ -1,7 +1,7 @@
 #pragma once
 // mirror-eval roll: initial roll by dense image symmetry (RollByImageSymmetry, the primary result)
 // and by point symmetry (METHOD.md §4, the dissertation's method) on rotated CMU/MIT faces, the
-// protocol of issue 4: for each ground-truth face a square crop of 3x its eye-to-mouth distance
+// protocol of the product's roll targets: for each ground-truth face a square crop of 3x its eye-to-mouth distance
 // about the face centre (border replicated) is rotated about that centre by a seeded uniform
 // angle in [-rotate, rotate]; the landmarks go with it. Our FaceDetector runs on the crop; for the
 // detection holding the (rotated) eye midpoint and mouth centre, Shi-Tomasi corners in its box

@@ -93,7 +93,7 @@ Sequence loadSequence(const TrackEvalOptions& o)
                                          std::to_string(points.size()));
             const auto axis = axisPoints68(points);
             TruthFace tf;
-            tf.box = boundingBox(points);  // issue 4: the landmarks' bounding box
+            tf.box = boundingBox(points);  // the landmarks' bounding box (face_match.hpp)
             tf.centre = {tf.box.x + 0.5f * tf.box.width, tf.box.y + 0.5f * tf.box.height};
             tf.rollDegrees = axisRollDegrees(axis[0], axis[1], axis[2]);
             tf.eyeRollDegrees =

@@ -6,7 +6,7 @@
 //
 // Truth layouts (--truth DIR, matched to the frames by file stem):
 //  - FGNet talking face: DIR/<stem>.pts, 68 points. One face, always in view. Truth box = the
-//    landmarks' bounding box (issue 4), against which our square face box is matched as the
+//    landmarks' bounding box, against which our square face box is matched as the
 //    landmark box it implies (face_match.hpp: landmarkConventionBox); truth roll = the line
 //    through eye midpoint, nose tip and mouth centre (face_truth.hpp); truth centre = the truth
 //    box's centre.

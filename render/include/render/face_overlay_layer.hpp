@@ -1,6 +1,6 @@
 #pragma once
 // FaceOverlayLayer: the 3D hats and glasses of the overlay catalogue drawn on every shown face
-// (issue 5), with a perspective camera matched to the video, ambient + directional lighting, and
+// (§6), with a perspective camera matched to the video, ambient + directional lighting, and
 // depth occlusion by the head.
 //
 // Each draw():

@@ -1,6 +1,6 @@
 #pragma once
 // HeadPose: where a head is and how it is turned, in the camera's 3D frame, for placing 3D
-// overlays (hats, glasses) on a tracked face (issue 5). Until a full 3D head pose is tracked, the
+// overlays (hats, glasses) on a tracked face (§6). Until a full 3D head pose is tracked, the
 // pose comes from the face box alone (headPoseFromFace): position, scale and roll, yaw and pitch 0.
 //
 // Frames (all right-handed, metres):
