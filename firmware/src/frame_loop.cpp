@@ -356,24 +356,13 @@ void FrameLoop::updateOverlays() noexcept
     // 5.4: overlays ride on smoothed poses (no jitter, no visible lag), lit like the face.
     const std::span<const vision::TrackedFace> smooth = smoother_.apply(state_.faces, now);
     overlayLayer_->setFaces(smooth);
-    const vision::ConstImageView gray = motionStage_->gray();
-    const float k = static_cast<float>(motionStage_->downscale());
     for (const vision::TrackedFace& f : smooth) {
         if (!f.shown())
             continue;
         const OverlayChoice choice = selection_->choiceFor(f.id);
         overlayLayer_->setOverlay(f.id, choice.overlay, choice.alpha);
-        // Scene brightness around the face: mean grey of the face box, 1 at mid-grey.
-        const int half = std::max(1, static_cast<int>(f.size / k * 0.5f));
-        const int cx = static_cast<int>(f.centre.x / k), cy = static_cast<int>(f.centre.y / k);
-        long sum = 0, count = 0;
-        for (int y = std::max(0, cy - half); y < std::min(gray.height, cy + half); y += 2)
-            for (int x = std::max(0, cx - half); x < std::min(gray.width, cx + half); x += 2) {
-                sum += gray.row(y)[x];
-                ++count;
-            }
-        const float mean = count > 0 ? static_cast<float>(sum) / static_cast<float>(count) : 128.f;
-        overlayLayer_->setBrightness(f.id, std::clamp(mean / 128.f, 0.4f, 1.6f));
+        overlayLayer_->setBrightness(
+            f.id, std::clamp(faceStage_->brightnessAround(f.centre, f.size), 0.4f, 1.6f));
     }
     if (selection_->generation() != savedGeneration_) {
         savedGeneration_ = selection_->generation();
