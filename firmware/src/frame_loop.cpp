@@ -3,9 +3,6 @@
 #include "firmware/exit_codes.hpp"
 #include "firmware/log.hpp"
 #include "platform/image_file.hpp"
-#include "platform/libcamera_source.hpp"
-#include "platform/reconnecting_source.hpp"
-#include "platform/window_display.hpp"
 #include "render/default_card_picture.hpp"
 #include "vision/chromaticity_stage.hpp"
 #include "vision/deinterlace_stage.hpp"
@@ -19,7 +16,6 @@
 #include <cerrno>
 #include <charconv>
 #include <cstdio>
-#include <cstdlib>
 #include <cstring>
 #include <ctime>
 #include <stdexcept>
@@ -287,17 +283,15 @@ void FrameLoop::pollButtons() noexcept
 
 void FrameLoop::pollKeys() noexcept
 {
-    // A desktop window (development): the keyboard does what the buttons and console do.
-    auto* window = dynamic_cast<platform::WindowDisplay*>(display_.get());
-    if (window == nullptr)
-        return;
-    if (window->closeRequested()) {
+    // A display with a keyboard (the desktop window, for development): the keys do what the
+    // buttons and the console do.
+    if (display_->closeRequested()) {
         MIRROR_LOG_INFO("window closed: stopping");
         requestStop();
         return;
     }
     platform::KeyEvent key;
-    while (window->nextKey(key)) {
+    while (display_->nextKey(key)) {
         const std::string_view k = key.name;
         if (k == "n" || k == "Right")
             runButtonAction(ButtonAction::NextOverlay);
@@ -531,14 +525,15 @@ int FrameLoop::run(std::uint64_t maxFrames) noexcept
             break;
     }
     writeSummary();
-    if (!restart_)
+    if (!restart_ && !processRestart_)
         notifier_.stopping();
-    const char* why = stop_.load()   ? "stop requested"
-                      : sourceEnded_ ? "end of source"
-                                     : "frame limit reached";
+    const char* why = processRestart_ ? "the source needs a new process"
+                      : stop_.load()  ? "stop requested"
+                      : sourceEnded_  ? "end of source"
+                                      : "frame limit reached";
     MIRROR_LOG_INFO("stopped (%s) after %llu frames, %.1f s", why,
                     static_cast<unsigned long long>(framesShown_), uptimeSeconds());
-    return kExitOk;
+    return processRestart_ ? kExitSource : kExitOk;
 }
 
 bool FrameLoop::step() noexcept
@@ -562,15 +557,16 @@ bool FrameLoop::step() noexcept
         return false;
     }
     if (status == platform::SourceStatus::Lost) {
-        ++lostPolls_;
-        if (platform::libcameraRestartRequired()) {
+        if (source_->needsProcessRestart()) {
             // libcamera 0.0.3 cannot let go of a camera that vanished without killing the
-            // process: leave now, at once, and let the service manager start a fresh one.
+            // process: stop now, and let main leave at once for the service manager to start a
+            // fresh one.
             MIRROR_LOG_ERROR("camera vanished; libcamera needs a new process: exiting for restart");
-            std::_Exit(kExitSource);
+            processRestart_ = true;
+            requestStop();
+            return false;
         }
-        if (const auto* camera = dynamic_cast<const platform::ReconnectingSource*>(source_.get());
-            camera && camera->needsRestart() && !restart_) {
+        if (source_->needsPipelineRebuild() && !restart_) {
             MIRROR_LOG_WARN("camera is back with another size or format: rebuilding the pipeline");
             restart_ = true;
             requestStop();

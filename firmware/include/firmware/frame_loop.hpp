@@ -71,8 +71,9 @@ public:
     /// Who wears what (null when overlays are off or could not be loaded).
     const OverlaySelection* overlaySelection() const noexcept { return selection_.get(); }
 
-    /// Runs until `maxFrames` frames were shown (0 = no limit), `quit`, requestStop(), or the end
-    /// of a finite source. Returns an exit code (kExitOk when it stopped as asked).
+    /// Runs until `maxFrames` frames were shown (0 = no limit), `quit`, requestStop(), the end
+    /// of a finite source, or a source that needs a new process. Returns an exit code: kExitOk
+    /// when it stopped as asked, kExitSource when the source needs a new process.
     int run(std::uint64_t maxFrames) noexcept;
     /// One iteration. False when the loop should stop.
     bool step() noexcept;
@@ -101,6 +102,10 @@ public:
     /// True when the loop stopped because `reboot-mirror` asked for the pipeline to be rebuilt
     /// (main then builds source, display and loop again; the process and console stay).
     bool restartRequested() const noexcept { return restart_; }
+    /// True when the loop stopped because its source can deliver no frame again in this process
+    /// (FrameSource::needsProcessRestart): main then ends the process at once, with run()'s
+    /// exit code and without static destructors, for the service manager to start a new one.
+    bool processRestartRequired() const noexcept { return processRestart_; }
     /// Writes the self-test report (as `selftest` prints it): one PASS/FAIL/SKIP line per check.
     /// Returns the number of FAILs.
     int selfTest(Reply& reply) const noexcept;
@@ -190,6 +195,7 @@ private:
     platform::ServiceNotifier notifier_;
     std::atomic<bool> stop_{false};
     bool restart_ = false;
+    bool processRestart_ = false;
     std::int64_t lastFrameNs_ = 0;      // when the source last delivered a frame
     std::int64_t frameIntervalNs_ = 0;  // running mean of the time between frames
     std::int64_t lastPresentNs_ = 0;    // when the display last showed one
@@ -201,7 +207,6 @@ private:
     bool snapshotReplyPending_ = false;
     std::uint64_t framesShown_ = 0;
     std::uint64_t badFrames_ = 0;
-    std::uint64_t lostPolls_ = 0;
     std::int64_t startNs_ = 0;
     std::int64_t intervalStartNs_ = 0;
     std::uint64_t intervalFrames_ = 0;
