@@ -73,7 +73,10 @@ std::unique_ptr<platform::FrameSource> withCard(std::unique_ptr<platform::FrameS
 std::unique_ptr<platform::FrameSource> openCamera(const SourceConfig& c, const std::string& spec)
 {
     platform::SourceOpener open;
+    platform::ReconnectOptions reconnect;
     if (startsWith(spec, "libcamera")) {
+        // A camera that vanished leaves libcamera unable to open any camera in this process.
+        reconnect.processRestartRequired = platform::libcameraRestartRequired;
         platform::LibcameraOptions o;
         o.camera = spec.size() > 10 ? spec.substr(10) : std::string("0");
         o.width = c.width;
@@ -89,7 +92,8 @@ std::unique_ptr<platform::FrameSource> openCamera(const SourceConfig& c, const s
         open = [o] { return std::make_unique<platform::V4l2Source>(o); };
     }
     auto camera = std::make_unique<platform::ReconnectingSource>(
-        spec, std::move(open), vision::Size{c.width, c.height}, vision::PixelFormat::RGB24);
+        spec, std::move(open), vision::Size{c.width, c.height}, vision::PixelFormat::RGB24,
+        reconnect);
     if (camera->state() != platform::CameraState::Running)
         MIRROR_LOG_WARN("camera %s unavailable at start: %s (retrying)", spec.c_str(),
                         camera->lastError());

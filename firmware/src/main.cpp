@@ -18,6 +18,7 @@
 #include <csignal>
 #include <cstdint>
 #include <cstdio>
+#include <cstdlib>
 #include <iostream>
 #include <memory>
 #include <string>
@@ -209,6 +210,10 @@ int main(int argc, char** argv)
             gLoop = &loop;
             const int code = loop.run(frames);
             gLoop = nullptr;
+            // A process whose camera libcamera had to park must not run static destructors
+            // while the parked camera's thread still runs (docs/DEVICES.md): leave at once.
+            if (loop.processRestartRequired())
+                std::_Exit(code);
             if (!loop.restartRequested())
                 return code;
             MIRROR_LOG_INFO("reboot-mirror: rebuilding the pipeline");

@@ -554,6 +554,11 @@ const char* LibcameraSource::lastError() const noexcept
     return impl_->error;
 }
 
+bool LibcameraSource::needsProcessRestart() const noexcept
+{
+    return restartRequired().load();
+}
+
 std::uint64_t LibcameraSource::failedFrames() const noexcept
 {
     return impl_->failed;

@@ -75,9 +75,9 @@ bool ReconnectingSource::tryOpen() noexcept
         std::unique_ptr<FrameSource> source = open_();
         if (!source)
             throw std::runtime_error(name_ + ": no source");
-        needsRestart_ = false;
+        needsRebuild_ = false;
         if (sizeFixed_ && (source->size() != size_ || source->format() != format_)) {
-            needsRestart_ = true;
+            needsRebuild_ = true;
             std::snprintf(error_, sizeof error_,
                           "%s: camera came back as %dx%d %s, the mirror runs %dx%d %s (restart "
                           "the pipeline to adopt it)",

@@ -207,12 +207,12 @@ TEST(ReconnectingSource, CameraBackWithAnotherSizeIsRefused)
         << source.lastError();
     EXPECT_EQ(world.alive, 0);
     EXPECT_EQ(source.size(), (vision::Size{64, 48}));
-    EXPECT_TRUE(source.needsRestart());
+    EXPECT_TRUE(source.needsPipelineRebuild());
 
     world.width = 64;  // back as it was
     clock.now += 1000 * kMs;
     EXPECT_EQ(source.next(frame), SourceStatus::Ok);
-    EXPECT_FALSE(source.needsRestart());
+    EXPECT_FALSE(source.needsPipelineRebuild());
 }
 
 TEST(ReconnectingSource, MissingAtBootKeepsTheConfiguredSize)
@@ -229,7 +229,7 @@ TEST(ReconnectingSource, MissingAtBootKeepsTheConfiguredSize)
     vision::Frame frame;
     EXPECT_EQ(source.next(frame), SourceStatus::Lost);
     EXPECT_EQ(source.size(), (vision::Size{640, 480}));
-    EXPECT_TRUE(source.needsRestart());
+    EXPECT_TRUE(source.needsPipelineRebuild());
     EXPECT_NE(std::string(source.lastError())
                   .find("came back as 64x48 RGB24, the mirror runs "
                         "640x480 RGB24"),

@@ -46,4 +46,20 @@ void FaceStage::process(FrameState& state) noexcept
     state.faces = this->faces();
 }
 
+float FaceStage::brightnessAround(Point2f centre, float size) const noexcept
+{
+    const ConstImageView gray = motion_.gray();
+    const float k = static_cast<float>(motion_.downscale());
+    const int half = std::max(1, static_cast<int>(size / k * 0.5f));
+    const int cx = static_cast<int>(centre.x / k), cy = static_cast<int>(centre.y / k);
+    long sum = 0, count = 0;
+    for (int y = std::max(0, cy - half); y < std::min(gray.height, cy + half); y += 2)
+        for (int x = std::max(0, cx - half); x < std::min(gray.width, cx + half); x += 2) {
+            sum += gray.row(y)[x];
+            ++count;
+        }
+    const float mean = count > 0 ? static_cast<float>(sum) / static_cast<float>(count) : 128.f;
+    return mean / 128.f;
+}
+
 }  // namespace vision

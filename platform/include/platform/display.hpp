@@ -4,6 +4,12 @@
 
 namespace platform {
 
+/// One key pressed on a display that has a keyboard (the desktop window), named by its X keysym
+/// ("q", "space", "Escape", "F1", "plus").
+struct KeyEvent {
+    char name[32] = {};
+};
+
 class Display {
 public:
     virtual ~Display() = default;
@@ -29,6 +35,12 @@ public:
     /// Folder where this display writes its output (snapshots, summaries), or "" when none.
     virtual const char* outputDir() const noexcept { return ""; }
     virtual const char* lastError() const noexcept { return ""; }
+
+    /// Takes the oldest unread key press on this display's own keyboard; false when there is none
+    /// (always, for a display without one). The firmware maps key names to its actions.
+    virtual bool nextKey(KeyEvent& /*out*/) noexcept { return false; }
+    /// The user asked to close this display (a window manager's close button).
+    virtual bool closeRequested() const noexcept { return false; }
 };
 
 }  // namespace platform

@@ -35,6 +35,13 @@ public:
     virtual std::int64_t lastWaitNs() const noexcept { return 0; }
     /// Reason for the last Lost status; empty when none.
     virtual const char* lastError() const noexcept { return ""; }
+    /// True while the device is back but delivers another size or format than size() and
+    /// format(): the firmware should rebuild its pipeline with a new source.
+    virtual bool needsPipelineRebuild() const noexcept { return false; }
+    /// True once no frame can come again in this process (libcamera 0.0.3 after its camera
+    /// vanished while running): the firmware should end the process, without running static
+    /// destructors, and let the service manager start a new one.
+    virtual bool needsProcessRestart() const noexcept { return false; }
 };
 
 }  // namespace platform

@@ -76,6 +76,8 @@ public:
     SourceStatus next(vision::Frame& frame) noexcept override;
     std::int64_t lastWaitNs() const noexcept override;
     const char* lastError() const noexcept override;
+    /// libcameraRestartRequired().
+    bool needsProcessRestart() const noexcept override;
 
     /// Frames the camera completed with an error status (skipped), since construction.
     std::uint64_t failedFrames() const noexcept;

@@ -27,6 +27,9 @@ struct ReconnectOptions {
     std::int64_t firstRetryNs = 500'000'000;  ///< delay before the first reopen after a failure
     std::int64_t maxRetryNs =
         8'000'000'000;  ///< the delay doubles after each failed reopen, to this
+    /// Whether the kind of source `open` makes can never be opened again in this process (for
+    /// libcamera: libcameraRestartRequired); null: it always can. Answers needsProcessRestart().
+    bool (*processRestartRequired)() noexcept = nullptr;
 };
 
 /// Opens the inner source; throws std::runtime_error with one line when it cannot.
@@ -45,7 +48,7 @@ using SourceOpener = std::function<std::unique_ptr<FrameSource>()>;
 /// Size and format are fixed at construction: those of the inner source when it opened then, else
 /// `expectedSize` / `expectedFormat` (what the config asks for). A camera opened later that
 /// delivers anything else (e.g. missing at boot, and the camera adjusts 640x480 to 636x480) is
-/// closed again and counted as a failed attempt; needsRestart() and lastError() say so, and
+/// closed again and counted as a failed attempt; needsPipelineRebuild() and lastError() say so, and
 /// rebuilding the pipeline with a new source adopts it.
 ///
 /// State changes (state(), transitions()) let the firmware log each change once and draw its
@@ -84,7 +87,12 @@ public:
     /// True while the camera is there but delivers another size or format than the mirror runs
     /// (e.g. missing at boot, and the camera adjusts the configured size): the firmware should
     /// rebuild its pipeline with a new source. Cleared by a successful reopen.
-    bool needsRestart() const noexcept { return needsRestart_; }
+    bool needsPipelineRebuild() const noexcept override { return needsRebuild_; }
+    /// What ReconnectOptions::processRestartRequired says (false without one).
+    bool needsProcessRestart() const noexcept override
+    {
+        return options_.processRestartRequired != nullptr && options_.processRestartRequired();
+    }
 
 private:
     bool tryOpen() noexcept;
@@ -97,7 +105,7 @@ private:
     PacerClock* clock_;
     std::unique_ptr<FrameSource> inner_;
     bool everOpened_ = false;
-    bool needsRestart_ = false;
+    bool needsRebuild_ = false;
     bool sizeFixed_ = false;
     vision::Size size_;
     vision::PixelFormat format_;

@@ -8,11 +8,6 @@
 
 namespace platform {
 
-/// One key pressed in the window, named by its X keysym ("q", "space", "Escape", "F1", "plus").
-struct KeyEvent {
-    char name[32] = {};
-};
-
 /// \class WindowDisplay
 /// A fixed-size X11 window with an EGL window surface (EGL_PLATFORM_X11_KHR) and a GLES2 context
 /// (EglContext), swapped with vsync. Works on an X server and on XWayland. The constructor throws
@@ -38,9 +33,9 @@ public:
     const char* lastError() const noexcept override;
 
     /// Takes the oldest unread key press; false when there is none.
-    bool nextKey(KeyEvent& out) noexcept;
+    bool nextKey(KeyEvent& out) noexcept override;
     /// The user closed the window (the window manager's close button).
-    bool closeRequested() const noexcept;
+    bool closeRequested() const noexcept override;
     /// The X window id (tests send it key events).
     unsigned long windowId() const noexcept;
 

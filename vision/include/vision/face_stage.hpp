@@ -24,6 +24,11 @@ public:
 
     /// The faces of the last frame in camera-frame coordinates (points too), oldest first.
     std::span<const TrackedFace> faces() const noexcept { return {frameFaces_.data(), count_}; }
+    /// Scene brightness around a face box of side `size` about `centre` (frame coordinates: a
+    /// face of faces(), or a smoothed pose of one), relative to mid-grey (1 = grey 128): the mean
+    /// of every second pixel of every second row of the box on the motion stage's grey image of
+    /// the last frame. 1 when the box is outside the image.
+    float brightnessAround(Point2f centre, float size) const noexcept;
     FaceTracker& tracker() noexcept { return tracker_; }
     const FaceTracker& tracker() const noexcept { return tracker_; }
 

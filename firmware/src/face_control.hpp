@@ -1,0 +1,42 @@
+#pragma once
+// FaceControl: the loop's side of the faces (5.1-5.2). The tracker runs in the pipeline's
+// MotionStage and FaceStage; this logs changes of the shown-face count once, feeds the debug HUD
+// (FaceDebugLayer: boxes, corners, roll axes) and answers the `faces` command.
+
+#include "firmware/command_shell.hpp"
+#include "render/face_debug_layer.hpp"
+#include "render/renderer.hpp"
+#include "vision/face_stage.hpp"
+#include "vision/motion_stage.hpp"
+
+#include <memory>
+#include <span>
+
+namespace firmware {
+
+class FaceControl {
+public:
+    /// Adds the debug layer to `renderer` (whose context must be current), shown when
+    /// `debugHud`. The stages and the renderer must outlive this.
+    FaceControl(vision::MotionStage& motion, vision::FaceStage& faces, render::Renderer& renderer,
+                bool debugHud);
+
+    /// After the vision stages of a good frame: `faces` are FrameState::faces.
+    void update(std::span<const vision::TrackedFace> faces) noexcept;
+    /// Faces shown in the last good frame.
+    int shown() const noexcept { return shown_; }
+    /// The tracks are stale (the camera was away): start afresh with a whole-image scan.
+    void forgetTracks() noexcept { faces_.tracker().reset(); }
+    void setDebugHud(bool on) noexcept { debug_->setVisible(on); }
+    bool debugHud() const noexcept { return debug_->visible(); }
+    /// Writes what `faces` prints: the counts, then one line per tracked face.
+    void format(Reply& reply) const noexcept;
+
+private:
+    vision::MotionStage& motion_;
+    vision::FaceStage& faces_;
+    std::unique_ptr<render::FaceDebugLayer> debug_;
+    int shown_ = 0;  // shown faces last frame, for logging changes once
+};
+
+}  // namespace firmware

@@ -1,0 +1,211 @@
+#include "overlay_control.hpp"
+
+#include "firmware/log.hpp"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <exception>
+#include <string_view>
+#include <vector>
+
+namespace firmware {
+
+namespace {
+
+std::string findCatalogue(const std::string& configured)
+{
+    if (!configured.empty())
+        return configured;
+    // Installed by the package; else the source tree's (a developer's build).
+    for (const char* candidate : {"/usr/share/mirror/overlays/catalogue.toml",
+                                  MIRROR_SOURCE_ASSETS "/overlays/catalogue.toml"})
+        if (::access(candidate, R_OK) == 0)
+            return candidate;
+    return "/usr/share/mirror/overlays/catalogue.toml";
+}
+
+}  // namespace
+
+OverlayControl::OverlayControl(const Config& config, const vision::FaceStage* faces,
+                               render::Renderer& renderer, const platform::Display& display,
+                               vision::Size frameSize)
+    : faces_(faces), renderer_(renderer), display_(display)
+{
+    if (faces_ && config.overlay.enabled)
+        load(config, frameSize);
+}
+
+void OverlayControl::load(const Config& config, vision::Size frameSize)
+{
+    // A broken catalogue is one error line and a mirror without hats, not a mirror that does not
+    // start: the video, the card and the console still work, and `selftest` reports it.
+    const std::string path = findCatalogue(config.overlay.catalogue);
+    render::OverlayCatalogue catalogue;
+    try {
+        catalogue = render::OverlayCatalogue::load(path);
+    } catch (const std::exception& e) {
+        problem_ = e.what();
+        MIRROR_LOG_ERROR("%s; running without overlays", e.what());
+        return;
+    }
+    if (catalogue.size() == 0) {
+        problem_ = "overlay catalogue " + path + " lists no overlays";
+        MIRROR_LOG_ERROR("%s; running without overlays", problem_.c_str());
+        return;
+    }
+    render::FaceOverlayOptions options;
+    options.verticalFovDegrees = static_cast<float>(config.overlay.verticalFovDeg);
+    layer_ = std::make_unique<render::FaceOverlayLayer>(catalogue, options);
+    renderer_.addLayer(layer_.get());
+
+    std::vector<std::string> names;
+    for (const render::Overlay& o : catalogue.overlays())
+        names.push_back(o.name);
+    OverlaySelectionOptions selectionOptions;
+    selectionOptions.mode = config.overlay.mode == OverlayConfig::Mode::PerFace
+                                ? OverlayMode::PerFace
+                                : OverlayMode::Global;
+    selectionOptions.fadeNs = static_cast<std::int64_t>(config.overlay.fadeMs) * 1'000'000;
+    selectionOptions.maxFaces = config.faces.maxFaces;
+    int initial = -1;
+    if (config.overlay.initial != "none" && (initial = catalogue.find(config.overlay.initial)) < 0)
+        MIRROR_LOG_WARN("overlay.default: no overlay '%s' in %s; starting with none",
+                        config.overlay.initial.c_str(), path.c_str());
+    selection_ = std::make_unique<OverlaySelection>(std::move(names), selectionOptions, initial);
+
+    // The last choice survives restarts (state folder); a corrupt file is ignored with a warning.
+    store_ = std::make_unique<OverlayStateStore>(config.state.dir);
+    std::string warning;
+    if (const auto saved = store_->load(warning)) {
+        selection_->setMode(saved->mode);
+        if (!selection_->select(saved->overlay))
+            MIRROR_LOG_WARN("overlay: kept choice '%s' is not in the catalogue; ignored",
+                            saved->overlay.c_str());
+    } else if (!warning.empty()) {
+        MIRROR_LOG_WARN("overlay: %s", warning.c_str());
+    }
+    savedGeneration_ = selection_->generation();
+    warmUp(frameSize);
+    MIRROR_LOG_INFO("overlays: %d from %s, wearing %s (%s)", selection_->size(), path.c_str(),
+                    selection_->name(selection_->selected()), toString(selection_->mode()));
+}
+
+void OverlayControl::warmUp(vision::Size size)
+{
+    // A software GL driver compiles each pipeline variant (an overlay opaque, blended, fading)
+    // the first time it is drawn: tens of milliseconds, and allocations, in the middle of the
+    // mirror. Draw every overlay once now, opaque and half faded, into the display's framebuffer
+    // (not presented), so the first person to try a hat sees no hitch.
+    const int n = selection_->size();
+    std::vector<vision::TrackedFace> faces;
+    for (int pass = 0; pass < 2; ++pass) {
+        faces.clear();
+        for (int i = 0; i < n && i < render::FaceOverlayLayer::kMaxFaces; ++i) {
+            vision::TrackedFace f;
+            f.id = 1 + pass * 100 + i;
+            f.centre = {static_cast<float>(size.width) * static_cast<float>(i + 1) /
+                            static_cast<float>(n + 1),
+                        static_cast<float>(size.height) * 0.5f};
+            f.size = static_cast<float>(size.height) * 0.25f;
+            f.state = vision::FaceState::Confirmed;
+            faces.push_back(f);
+            layer_->setOverlay(f.id, i, pass == 0 ? 1.f : 0.5f);
+        }
+        layer_->setFaces(faces);
+        renderer_.draw(vision::ConstImageView{}, display_.width(), display_.height(), "");
+    }
+    layer_->setFaces({});
+    layer_->clearSelection();
+}
+
+void OverlayControl::update(std::span<const vision::TrackedFace> faces, std::int64_t now) noexcept
+{
+    if (!selection_)
+        return;
+    selection_->update(faces, now);
+    // 5.4: overlays ride on smoothed poses (no jitter, no visible lag), lit like the face.
+    const std::span<const vision::TrackedFace> smooth = smoother_.apply(faces, now);
+    layer_->setFaces(smooth);
+    for (const vision::TrackedFace& f : smooth) {
+        if (!f.shown())
+            continue;
+        const OverlayChoice choice = selection_->choiceFor(f.id);
+        layer_->setOverlay(f.id, choice.overlay, choice.alpha);
+        layer_->setBrightness(f.id,
+                              std::clamp(faces_->brightnessAround(f.centre, f.size), 0.4f, 1.6f));
+    }
+    if (selection_->generation() != savedGeneration_) {
+        savedGeneration_ = selection_->generation();
+        if (!store_->save(*selection_))
+            MIRROR_LOG_WARN("overlay: choice not kept: %s", store_->lastError());
+    }
+}
+
+void OverlayControl::format(std::span<const vision::TrackedFace> faces, Reply& reply) const noexcept
+{
+    reply.printf("overlay: %s (%s)\n", selection_->name(selection_->selected()),
+                 toString(selection_->mode()));
+    for (const vision::TrackedFace& f : faces) {
+        if (!f.shown())
+            continue;
+        const OverlayChoice c = selection_->choiceFor(f.id);
+        reply.printf("face %d: %s alpha %.2f%s\n", f.id, selection_->name(c.overlay),
+                     static_cast<double>(c.alpha),
+                     f.id == selection_->targetFace() ? " (buttons act on this face)" : "");
+    }
+}
+
+void OverlayControl::command(const Args& args, std::span<const vision::TrackedFace> faces,
+                             Reply& reply) noexcept
+{
+    if (!selection_) {
+        reply.printf("overlay: none loaded%s%.200s\n", problem_.empty() ? "" : ": ",
+                     problem_.c_str());
+        return;
+    }
+    OverlayChange change;
+    const std::string_view what = args[1];
+    if (args.size() == 1) {
+        format(faces, reply);
+        return;
+    }
+    if (args.size() == 2 && what == "list") {
+        for (int i = 0; i < selection_->size(); ++i)
+            reply.printf("%d %s%s\n", i + 1, selection_->name(i),
+                         i == selection_->selected() ? " *" : "");
+        return;
+    }
+    if (args.size() == 3 && what == "mode") {
+        OverlayMode mode{};
+        if (!parseOverlayMode(args[2], mode)) {
+            reply.printf("error: usage: overlay mode global|per_face\n");
+            return;
+        }
+        selection_->setMode(mode);
+        reply.printf("overlay: mode %s\n", toString(mode));
+        return;
+    }
+    if (args.size() != 2) {
+        reply.printf("error: usage: overlay [next|prev|off|list|NAME|mode global|per_face]\n");
+        return;
+    }
+    if (what == "next")
+        change = selection_->next();
+    else if (what == "prev")
+        change = selection_->prev();
+    else if (what == "off")
+        change = selection_->off();
+    else if (!selection_->select(what, &change)) {
+        reply.printf("error: no overlay '%.*s' (overlay list)\n", static_cast<int>(what.size()),
+                     what.data());
+        return;
+    }
+    if (change.faceId != 0)
+        reply.printf("overlay: face %d wears %s\n", change.faceId,
+                     selection_->name(change.overlay));
+    else
+        reply.printf("overlay: %s\n", selection_->name(change.overlay));
+}
+
+}  // namespace firmware
