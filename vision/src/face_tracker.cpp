@@ -1,10 +1,12 @@
 #include "vision/face_tracker.hpp"
 
+#include "face_track.hpp"
+#include "tilted_scan.hpp"
+#include "track_verifier.hpp"
 #include "vision/corner_detector.hpp"
 #include "vision/image_pyramid.hpp"
 #include "vision/roll_by_image_symmetry.hpp"
 #include "vision/roll_estimator.hpp"
-#include "vision/upright_patch.hpp"
 
 #include <algorithm>
 #include <array>
@@ -19,32 +21,10 @@ namespace vision {
 
 namespace {
 
-constexpr int kMaxPoints = 64;  ///< corners kept per track
 constexpr int kMaxRecent = 16;  ///< dropped-face areas remembered for the scan mask
-constexpr int kMaxTracks = 32;  ///< hard cap on options.maxFaces
-constexpr float kRadToDeg = 57.29577951308232f;
-/// The verification patch shows the face box enlarged by this factor: the detector's window
-/// must fit around the face at a few scales.
-constexpr float kVerifyContext = 1.6f;
 /// Per-frame shifts of a face's centre (working-image pixels) below this are the noise of a
 /// still image (sensor noise, light changing), not motion.
 constexpr float kStillShift = 0.25f;
-/// Image-symmetry roll estimates less sure than this are not used (RollEstimate::confidence).
-constexpr float kMinImageRollConfidence = 0.15f;
-/// Tilted scans: the motion mask of the scanned region is resampled to this square (the
-/// detector maps a mask of any resolution proportionally onto the image).
-constexpr int kTiltMaskSide = 64;
-/// Tilted scans look for moving regions in cells of this many pixels.
-constexpr int kTiltCell = 8;
-/// A tracked face's motion (its trail included) covers its box enlarged by this factor.
-constexpr float kTrackMotionReach = 1.5f;
-/// Tilted scans cost as much as upright ones per window and there are two angles: only
-/// windows (and cells) this full of motion, as a moving face's box is (about 0.7 on average).
-constexpr float kTiltMinMaskFraction = 0.4f;
-constexpr float kDegToRad = 1.f / kRadToDeg;
-/// Verification retries this far either side of the tracked roll (the upright cascade finds
-/// faces within about +-15 degrees).
-constexpr float kVerifyRollStep = 12.f;
 /// The first frames of a track settle its box (detections move it a few pixels).
 constexpr int kSettleFrames = 5;
 /// Fraction of a young track's corners that must follow its motion fit for the motion to count.
@@ -58,49 +38,6 @@ constexpr float kTurnCheckDegrees = 4.f;
 /// Fraction of a track's corners that must survive a flow step for the face to count as held
 /// by them (the longer grace of FaceTrackerOptions::occludedGraceFrames).
 constexpr float kHeldFraction = 0.8f;
-
-/// The rotated image of a w x h image, turned by `degrees`, fits in this box (plus a margin).
-Size rotatedCanvas(Size s, float degrees) noexcept
-{
-    const float c = std::fabs(std::cos(degrees * kDegToRad));
-    const float n = std::fabs(std::sin(degrees * kDegToRad));
-    const float w = static_cast<float>(s.width) * c + static_cast<float>(s.height) * n;
-    const float h = static_cast<float>(s.width) * n + static_cast<float>(s.height) * c;
-    return {static_cast<int>(std::ceil(w)) + 16, static_cast<int>(std::ceil(h)) + 16};
-}
-
-struct Track {
-    TrackedFace face;
-    std::array<Point2f, kMaxPoints> points{};
-    int pointCount = 0;
-    int lastMotionFrame = 0;  ///< frame index of the last frame the face showed it moves
-    float anchor = 0.f;       ///< `path` when the face last moved
-    /// How far the image content of the face has travelled since the track began: the sum of
-    /// the per-frame shifts of its centre by the motion model (tracking modes) or of the centre
-    /// itself (detector only), each counted only above the noise of a still image. A person
-    /// never holds perfectly still (a talking head wobbles back and forth, which a net
-    /// displacement would cancel); a photo's shifts stay in the noise. Re-anchoring the box on
-    /// a detection is not motion and does not count.
-    float path = 0.f;
-    Point2f lastCentre{};
-    int verifiedSinceAnchor = 0;
-    bool detectedThisFrame = false;
-    /// The last flow step kept most of the corners on one rigid motion: the face is still
-    /// there, whatever the cascade says (a hand or another head over part of it, a turned head).
-    bool heldByCorners = false;
-    /// Started by a tilted scan's hit: until shown, only the motion of its corners (`path`)
-    /// shows it moves, not the motion mask. The turned regions offer the cascade more windows,
-    /// hence more chance hits on still faces, and a changing light can fill a still face's box
-    /// with foreground.
-    bool tiltFound = false;
-    /// How far its roll turned since it started, by flow steps that moved all of the face
-    /// (movedAsOne), and (when confident) the image symmetry's roll at the start: a face turning
-    /// in place shows it moves when the image agrees it turned (turnedInImage).
-    float turn = 0.f;
-    float imageRollAtStart = 0.f;
-    bool haveImageRollAtStart = false;
-    float rollChecked = 0.f;  ///< the tracked turn at the last such check
-};
 
 struct RecentArea {
     Rect box;
@@ -149,28 +86,6 @@ FaceDetectorOptions scanOptions(const FaceTrackerOptions& o)
     return d;
 }
 
-FaceDetectorOptions tiltOptions(const FaceTrackerOptions& o)
-{
-    FaceDetectorOptions d = o.detector;
-    d.maxFrameSize = rotatedCanvas(o.imageSize, o.tiltScanDegrees);
-    return d;
-}
-
-FaceDetectorOptions verifyOptions(const FaceTrackerOptions& o, Size window)
-{
-    // The face fills about 1 / kVerifyContext of the patch; scan from the smallest window up to
-    // the whole patch with the scan's scale factor.
-    FaceDetectorOptions d;
-    d.maxFrameSize = {o.verifyPatchSize, o.verifyPatchSize};
-    d.scaleFactor = o.detector.scaleFactor;
-    d.minNeighbors = 1;
-    d.minSize = window;
-    d.maxSize = {o.verifyPatchSize, o.verifyPatchSize};
-    d.maxRawHits = 1024;
-    d.maxFaces = 16;
-    return d;
-}
-
 void validate(const FaceTrackerOptions& o)
 {
     if (o.imageSize.width < 24 || o.imageSize.height < 24)
@@ -201,7 +116,6 @@ struct FaceTracker::Impl {
     explicit Impl(const HaarCascade& cascade, const FaceTrackerOptions& o)
         : options(o),
           scan(cascade, scanOptions(o)),
-          verify(cascade, verifyOptions(o, {cascade.windowWidth, cascade.windowHeight})),
           corners(o.imageSize, CornerDetectorOptions{kMaxPoints, 0.01f, 5.f, 3}),
           flow(o.flow),
           pyramids{ImagePyramid(o.imageSize, o.flow.maxLevel + 1),
@@ -211,27 +125,17 @@ struct FaceTracker::Impl {
           scanMask(o.imageSize.width, o.imageSize.height, PixelFormat::Gray8),
           scanMaskIntegral(o.imageSize),
           motionIntegral(o.imageSize),
-          patch(o.verifyPatchSize, o.verifyPatchSize, PixelFormat::Gray8)
+          imageRoll(o.rollByImageSymmetry ? std::make_unique<RollByImageSymmetry>() : nullptr),
+          verifier(cascade, o, imageRoll.get()),
+          tilted(cascade, o)
     {
-        if (o.rollByImageSymmetry)
-            imageRoll = std::make_unique<RollByImageSymmetry>();
-        if (options.tiltScanDegrees > 0.f) {
-            const FaceDetectorOptions t = tiltOptions(o);
-            tiltScan = std::make_unique<FaceDetector>(cascade, t);
-            tiltGray = ImageBuffer(t.maxFrameSize.width, t.maxFrameSize.height, PixelFormat::Gray8);
-            tiltMask = ImageBuffer(kTiltMaskSide, kTiltMaskSide, PixelFormat::Gray8);
-            tiltMaskIntegral = IntegralImage({kTiltMaskSide, kTiltMaskSide});
-        }
         options.detector.maxFrameSize = o.imageSize;
         options.fit.kind = fitKind(o.mode);
         tracks.resize(static_cast<std::size_t>(o.maxFaces));
         outFaces.resize(static_cast<std::size_t>(o.maxFaces));
         const auto capacity = static_cast<std::size_t>(std::max(1, o.detector.maxFaces));
         uprightHits.resize(capacity);
-        // Both angles may complete in one frame.
-        tiltHits.resize(options.tiltScanDegrees > 0.f ? 2 * capacity : 0);
-        tiltHitRolls.resize(tiltHits.size());
-        outDetections.resize(uprightHits.size() + tiltHits.size());
+        outDetections.resize(uprightHits.size() + tilted.capacity());
         excluded.resize(static_cast<std::size_t>(o.maxFaces));
         std::memset(scanMask.view().data, 0, scanMask.bytes());
         scanMaskIntegral.compute(scanMask.view());
@@ -245,11 +149,6 @@ struct FaceTracker::Impl {
     void startTrack(Rect box, float rollHint) noexcept;
     float initialRoll(Track& t, float rollHint) noexcept;
     bool turnedInImage(Track& t) noexcept;
-    bool chooseTiltRegion() noexcept;
-    long tiltScanStep(long budget) noexcept;
-    void correctRoll(Track& t) noexcept;
-    bool verifyTrack(Track& t) noexcept;
-    bool verifyAt(Track& t, float roll) noexcept;
     void prepareScanMask(const ConstImageView& mask) noexcept;
     float motionFraction(Rect box) const noexcept;
     void drop(int index) noexcept;
@@ -257,7 +156,6 @@ struct FaceTracker::Impl {
 
     FaceTrackerOptions options;
     FaceDetector scan;
-    FaceDetector verify;
     CornerDetector corners;
     PyramidalLucasKanade flow;
     ImagePyramid pyramids[2];
@@ -269,8 +167,8 @@ struct FaceTracker::Impl {
     IntegralImage motionIntegral;
     const IntegralImage* motion = nullptr;  ///< this frame's mask integral (ours or the caller's)
     bool haveMotion = false;
-    ImageBuffer patch;
     std::unique_ptr<RollByImageSymmetry> imageRoll;  ///< null: corner symmetry only
+    TrackVerifier verifier;  ///< fig. 89's upright-warped check of undetected tracks
     std::vector<Track> tracks;                       ///< [0, trackCount) live, oldest first
     int trackCount = 0;
     int nextId = 1;
@@ -289,21 +187,7 @@ struct FaceTracker::Impl {
     std::vector<Rect> uprightHits;  ///< the last completed upright scan's faces
     int uprightCount = 0;
 
-    // Tilted scans of the moving regions no track covers (null / empty when off).
-    std::unique_ptr<FaceDetector> tiltScan;
-    ImageBuffer tiltGray;  ///< the region turned upright at the scan's angle (top-left part)
-    ImageBuffer tiltMask;  ///< the region's scan mask, resampled to kTiltMaskSide squared
-    IntegralImage tiltMaskIntegral;
-    bool tiltActive = false;   ///< a tilted scan is in progress over tiltCentre / tiltSize
-    Point2f tiltCentre{};      ///< image point at the region's centre
-    Size tiltSize{};           ///< region in the turned image (pixels as the image's)
-    float tiltAngle = 0.f;     ///< this scan's angle
-    float nextTiltSign = 1.f;  ///< the next scan turns by this sign times tiltScanDegrees
-    std::array<Rect, kMaxTracks> tiltExcluded{};
-    std::vector<Rect> tiltHits;       ///< the last completed tilted scan's faces (image boxes)
-    std::vector<float> tiltHitRolls;  ///< the angle of the scan that found each
-    int tiltCount = 0;
-    bool tiltDone = false;  ///< a tilted scan completed this frame
+    TiltedScan tilted;  ///< the moving regions no track covers, turned
 
     std::vector<Rect> excluded;
     bool scanDone = false;
@@ -467,82 +351,6 @@ bool FaceTracker::Impl::movedAsOne(int m, const MotionModel& model) const noexce
            static_cast<float>(along) >= kMovedAsOneFraction * static_cast<float>(counted);
 }
 
-bool FaceTracker::Impl::verifyTrack(Track& t) noexcept
-{
-    // Fig. 89: a track with no detection is verified by warping its face upright by the tracked
-    // roll into a small patch and running first-hit detection on it.
-    if (options.mode == FaceTrackingMode::Translation)
-        return verifyAt(t, 0.f);
-    if (verifyAt(t, t.face.rollDegrees))
-        return true;
-    // The tracked roll drifts (corners on hair and outline): a shown face the cascade no longer
-    // finds at it is tried once either side, within the cascade's reach, and the roll moves
-    // towards where it was found. Not a Tentative one: those get no grace (a still photo that
-    // lingers as a track would in time be confirmed by the light changing on it).
-    if (t.face.state == FaceState::Tentative)
-        return false;
-    for (const float d : {-kVerifyRollStep, kVerifyRollStep}) {
-        if (verifyAt(t, t.face.rollDegrees + d)) {
-            t.face.rollDegrees += 0.5f * d;
-            return true;
-        }
-    }
-    return false;
-}
-
-bool FaceTracker::Impl::verifyAt(Track& t, float roll) noexcept
-{
-    const float side = t.face.size * kVerifyContext;
-    if (!warpUpright(grays[current].view(), t.face.centre, roll, side, patch.view()))
-        return false;
-    const bool reanchor =
-        options.reanchorEvery > 0 && t.verifiedSinceAnchor + 1 >= options.reanchorEvery;
-    if (!reanchor) {
-        Rect hit;
-        const bool ok = verify.detectFirst(patch.view(), hit);
-        windows += verify.windowsEvaluated();
-        if (ok)
-            ++t.verifiedSinceAnchor;
-        return ok;
-    }
-    // Grouped scan of the patch: the best group near the patch centre re-centres and re-sizes
-    // the track (first hits say only "a face is here", not where exactly).
-    const int n = verify.detect(patch.view());
-    windows += verify.windowsEvaluated();
-    if (n <= 0)
-        return false;
-    const float half = static_cast<float>(options.verifyPatchSize) * 0.5f;
-    const float unit = side / static_cast<float>(options.verifyPatchSize);
-    const std::span<const Rect> boxes = verify.faces();
-    int best = -1;
-    float bestDistance = 1e9f;
-    for (int i = 0; i < n; ++i) {
-        const Rect& b = boxes[static_cast<std::size_t>(i)];
-        const float dx = static_cast<float>(b.x) + static_cast<float>(b.width) * 0.5f - half;
-        const float dy = static_cast<float>(b.y) + static_cast<float>(b.height) * 0.5f - half;
-        const float d = dx * dx + dy * dy;
-        if (d < bestDistance) {
-            bestDistance = d;
-            best = i;
-        }
-    }
-    const Rect& b = boxes[static_cast<std::size_t>(best)];
-    const float size = static_cast<float>(b.width) * unit;
-    if (size < t.face.size * 0.6f || size > t.face.size * 1.6f)
-        return true;  // a face is there, but this box is not a sensible measure of it
-    // Patch offset back to the image: rotate by the roll used for warping.
-    const float px = (static_cast<float>(b.x) + static_cast<float>(b.width) * 0.5f - half) * unit;
-    const float py = (static_cast<float>(b.y) + static_cast<float>(b.height) * 0.5f - half) * unit;
-    const float c = std::cos(roll / kRadToDeg);
-    const float s = std::sin(roll / kRadToDeg);
-    t.face.centre.x += 0.8f * (c * px - s * py);
-    t.face.centre.y += 0.8f * (s * px + c * py);
-    t.face.size += 0.8f * (size - t.face.size);
-    t.verifiedSinceAnchor = 0;
-    correctRoll(t);
-    return true;
-}
-
 float FaceTracker::Impl::initialRoll(Track& t, float rollHint) noexcept
 {
     // Beyond 5.2: the dense symmetry of the face image, which holds on small faces whose corner
@@ -585,20 +393,6 @@ bool FaceTracker::Impl::turnedInImage(Track& t) noexcept
         return false;
     const float seen = r.rollDegrees - t.imageRollAtStart;
     return seen * t.turn > 0.f && std::fabs(seen) >= 0.5f * kTurnCheckDegrees;
-}
-
-void FaceTracker::Impl::correctRoll(Track& t) noexcept
-{
-    // Tracking accumulates small rotation errors (corners on hair and outline pull the fit
-    // towards no rotation): when a face is re-anchored, its roll is measured again from the
-    // image and the track moves halfway towards it.
-    if (!imageRoll || options.mode == FaceTrackingMode::Translation)
-        return;
-    const RollEstimate r = imageRoll->estimate(grays[current].view(), t.face.centre, t.face.size);
-    if (r.confidence < kMinImageRollConfidence ||
-        std::fabs(r.rollDegrees - t.face.rollDegrees) > 20.f)
-        return;
-    t.face.rollDegrees += 0.5f * (r.rollDegrees - t.face.rollDegrees);
 }
 
 void FaceTracker::Impl::startTrack(Rect box, float rollHint) noexcept
@@ -649,129 +443,6 @@ void FaceTracker::Impl::drop(int index) noexcept
     for (int i = index; i + 1 < trackCount; ++i)
         tracks[static_cast<std::size_t>(i)] = tracks[static_cast<std::size_t>(i + 1)];
     --trackCount;
-}
-
-bool FaceTracker::Impl::chooseTiltRegion() noexcept
-{
-    // The bounding box of the cells with motion (the scan mask's fraction) whose centre lies
-    // outside every tracked face's reach: where an untracked face may be.
-    const Size s = options.imageSize;
-    int x0 = s.width, y0 = s.height, x1 = 0, y1 = 0;
-    for (int cy = 0; cy < s.height; cy += kTiltCell) {
-        const int cy1 = std::min(cy + kTiltCell, s.height);
-        for (int cx = 0; cx < s.width; cx += kTiltCell) {
-            const int cx1 = std::min(cx + kTiltCell, s.width);
-            if (scanMaskIntegral.maskFraction({cx, cy, cx1 - cx, cy1 - cy}) < kTiltMinMaskFraction)
-                continue;
-            const float mx = 0.5f * static_cast<float>(cx + cx1);
-            const float my = 0.5f * static_cast<float>(cy + cy1);
-            bool tracked = false;
-            for (int i = 0; i < trackCount && !tracked; ++i) {
-                const TrackedFace& f = tracks[static_cast<std::size_t>(i)].face;
-                const float reach = 0.5f * kTrackMotionReach * f.size;
-                tracked = std::fabs(mx - f.centre.x) < reach && std::fabs(my - f.centre.y) < reach;
-            }
-            if (tracked)
-                continue;
-            x0 = std::min(x0, cx);
-            y0 = std::min(y0, cy);
-            x1 = std::max(x1, cx1);
-            y1 = std::max(y1, cy1);
-        }
-    }
-    const int window = std::max(scan.windowSize().width, scan.windowSize().height);
-    if (x1 - x0 < window / 2 || y1 - y0 < window / 2)
-        return false;  // nothing moving untracked of a face's size
-    // Margin: the detector's box reaches beyond the moving pixels of the face.
-    const float margin = 4.f + 0.15f * static_cast<float>(std::max(x1 - x0, y1 - y0));
-    const float bw = static_cast<float>(x1 - x0) + 2.f * margin;
-    const float bh = static_cast<float>(y1 - y0) + 2.f * margin;
-    tiltAngle = nextTiltSign * options.tiltScanDegrees;
-    nextTiltSign = -nextTiltSign;
-    const float c = std::fabs(std::cos(tiltAngle * kDegToRad));
-    const float n = std::fabs(std::sin(tiltAngle * kDegToRad));
-    const Size canvas = tiltGray.view().size();
-    tiltSize = {std::min(canvas.width, static_cast<int>(bw * c + bh * n + 0.5f)),
-                std::min(canvas.height, static_cast<int>(bw * n + bh * c + 0.5f))};
-    if (tiltSize.width < window || tiltSize.height < window)
-        return false;
-    tiltCentre = {0.5f * static_cast<float>(x0 + x1), 0.5f * static_cast<float>(y0 + y1)};
-    return true;
-}
-
-long FaceTracker::Impl::tiltScanStep(long budget) noexcept
-{
-    // A face rolled by the scan's angle comes out upright in the turned region (warpRotated:
-    // region offset (u, v) from its centre shows the image at tiltCentre + R(angle) (u, v)).
-    if (!tiltActive) {
-        tiltActive = chooseTiltRegion();
-        if (!tiltActive) {
-            if (!tiltDone)
-                tiltCount = 0;  // nothing untracked moves: no tilted detections to report
-            return 0;
-        }
-    }
-    ImageView region = tiltGray.view();
-    region.width = tiltSize.width;
-    region.height = tiltSize.height;
-    warpRotated(grays[current].view(), tiltCentre, tiltAngle, 1.f, 1.f, region);
-    warpRotated(scanMask.view(), tiltCentre, tiltAngle,
-                static_cast<float>(tiltSize.width) / kTiltMaskSide,
-                static_cast<float>(tiltSize.height) / kTiltMaskSide, tiltMask.view());
-    tiltMaskIntegral.compute(tiltMask.view());
-    // Tracked faces are excluded as in the upright scan: their boxes about their centres as
-    // seen in the turned region.
-    const float c = std::cos(tiltAngle * kDegToRad);
-    const float n = std::sin(tiltAngle * kDegToRad);
-    const float hw = 0.5f * static_cast<float>(tiltSize.width);
-    const float hh = 0.5f * static_cast<float>(tiltSize.height);
-    int excludedCount = 0;
-    if (options.mode != FaceTrackingMode::None) {
-        for (int i = 0; i < trackCount; ++i) {
-            const TrackedFace& f = tracks[static_cast<std::size_t>(i)].face;
-            const float dx = f.centre.x - tiltCentre.x;
-            const float dy = f.centre.y - tiltCentre.y;
-            const float u = c * dx + n * dy + hw;
-            const float v = -n * dx + c * dy + hh;
-            const float half = 0.5f * f.size;
-            tiltExcluded[static_cast<std::size_t>(excludedCount++)] = {
-                static_cast<int>(u - half), static_cast<int>(v - half),
-                static_cast<int>(f.size + 0.5f), static_cast<int>(f.size + 0.5f)};
-        }
-    }
-    const bool done = tiltScan->detectMaskedIncremental(
-        region, &tiltMaskIntegral, std::max(options.minMaskFraction, kTiltMinMaskFraction),
-        std::span<const Rect>(tiltExcluded.data(), static_cast<std::size_t>(excludedCount)),
-        budget);
-    const long used = tiltScan->windowsEvaluated();
-    windows += used;
-    if (!done)
-        return used;
-    tiltActive = false;
-    if (!tiltDone)
-        tiltCount = 0;  // the first tilted scan completed this frame replaces the last ones
-    tiltDone = true;
-    const Size s = options.imageSize;
-    for (const Rect& b : tiltScan->faces()) {
-        if (tiltCount >= static_cast<int>(tiltHits.size()))
-            break;
-        const float u = static_cast<float>(b.x) + 0.5f * static_cast<float>(b.width) - hw;
-        const float v = static_cast<float>(b.y) + 0.5f * static_cast<float>(b.height) - hh;
-        const float x = tiltCentre.x + c * u - n * v;
-        const float y = tiltCentre.y + n * u + c * v;
-        // Only faces wholly in view: the turned region repeats the image's border pixels, and
-        // the upright scan finds a face entering at an edge once it is in (its box and roll
-        // from a part of a face are poor anyway).
-        const int side = std::max(b.width, b.height);
-        const float half = 0.5f * static_cast<float>(side);
-        if (x - half < 0.f || y - half < 0.f || x + half > static_cast<float>(s.width) ||
-            y + half > static_cast<float>(s.height))
-            continue;
-        tiltHitRolls[static_cast<std::size_t>(tiltCount)] = tiltAngle;
-        tiltHits[static_cast<std::size_t>(tiltCount++)] = {
-            static_cast<int>(x - half + 0.5f), static_cast<int>(y - half + 0.5f), side, side};
-    }
-    return used;
 }
 
 bool FaceTracker::Impl::process(const ConstImageView& gray, const ConstImageView& mask,
@@ -878,40 +549,33 @@ bool FaceTracker::Impl::process(const ConstImageView& gray, const ConstImageView
             uprightHits[static_cast<std::size_t>(d)] = scan.faces()[static_cast<std::size_t>(d)];
     }
     // Tilted scans of the moving regions no track covers, with what the budget left.
-    tiltDone = false;
-    if (tiltScan && haveMotion && options.mode != FaceTrackingMode::None) {
+    long left = 0;
+    if (haveMotion && options.mode != FaceTrackingMode::None) {
         // A cold start's tilted scans cover the whole image once, as its upright scan does, in
         // its frame.
-        long left = options.tiltWindowBudget > 0 && !cold ? options.tiltWindowBudget
-                                                          : std::numeric_limits<long>::max();
+        left = options.tiltWindowBudget > 0 && !cold ? options.tiltWindowBudget
+                                                     : TiltedScan::kUnlimited;
         if (budget > 0)
             left = std::min(left, budget - scan.windowsEvaluated());
-        // One angle after the other while the budget lasts (both in a frame when it allows).
-        for (int k = 0; k < 2 && left > 0; ++k) {
-            const bool unlimited = left == std::numeric_limits<long>::max();
-            const long used = tiltScanStep(unlimited ? 0 : left);
-            if (tiltActive || used == 0)
-                break;  // the scan continues next frame, or there was nothing to scan
-            if (!unlimited)
-                left -= used;
-        }
     }
+    windows += tilted.run({grays[current].view(), scanMask.view(), scanMaskIntegral,
+                           {tracks.data(), static_cast<std::size_t>(trackCount)}},
+                          left);
     detectionCount = 0;
     for (int d = 0; d < uprightCount; ++d)
         outDetections[static_cast<std::size_t>(detectionCount++)] =
             uprightHits[static_cast<std::size_t>(d)];
-    for (int d = 0; d < tiltCount; ++d)
-        outDetections[static_cast<std::size_t>(detectionCount++)] =
-            tiltHits[static_cast<std::size_t>(d)];
+    for (const Rect& b : tilted.hits())
+        outDetections[static_cast<std::size_t>(detectionCount++)] = b;
 
     // 3. Detections (of the scans completed this frame) confirm the tracks they overlap; the
     // others start new tracks, a tilted scan's with its angle as the first guess of the roll.
     const int newUpright = scanDone ? uprightCount : 0;
-    const int newTilted = tiltDone ? tiltCount : 0;
+    const int newTilted = tilted.completed() ? static_cast<int>(tilted.hits().size()) : 0;
     for (int d = 0; d < newUpright + newTilted; ++d) {
-        const bool tilted = d >= newUpright;
-        const Rect box = tilted ? tiltHits[static_cast<std::size_t>(d - newUpright)]
-                                : uprightHits[static_cast<std::size_t>(d)];
+        const bool isTilted = d >= newUpright;
+        const Rect box = isTilted ? tilted.hits()[static_cast<std::size_t>(d - newUpright)]
+                                  : uprightHits[static_cast<std::size_t>(d)];
         int best = -1;
         float bestIou = options.matchIou;
         for (int i = 0; i < trackCount; ++i) {
@@ -932,8 +596,9 @@ bool FaceTracker::Impl::process(const ConstImageView& gray, const ConstImageView
                              c.y < static_cast<float>(box.y + box.height);
             }
             if (!holdsTrack)
-                startTrack(box,
-                           tilted ? tiltHitRolls[static_cast<std::size_t>(d - newUpright)] : 0.f);
+                startTrack(box, isTilted
+                                    ? tilted.hitRolls()[static_cast<std::size_t>(d - newUpright)]
+                                    : 0.f);
             continue;
         }
         Track& t = tracks[static_cast<std::size_t>(best)];
@@ -954,7 +619,7 @@ bool FaceTracker::Impl::process(const ConstImageView& gray, const ConstImageView
         bool seen = t.detectedThisFrame;
         const bool isNew = t.face.age == 0;
         if (!seen && options.mode != FaceTrackingMode::None)
-            seen = verifyTrack(t);
+            seen = verifier.verify(grays[current].view(), t, windows);
         if (!isNew) {
             if (seen) {
                 ++t.face.hits;
@@ -1087,10 +752,7 @@ void FaceTracker::reset() noexcept
     impl_->havePrevious = false;
     impl_->detectionCount = 0;
     impl_->uprightCount = 0;
-    impl_->tiltCount = 0;
-    impl_->tiltActive = false;
-    if (impl_->tiltScan)
-        impl_->tiltScan->resetIncremental();
+    impl_->tilted.reset();
     impl_->scan.resetIncremental();
     impl_->recent.fill(RecentArea{});
     impl_->coldStart = true;
