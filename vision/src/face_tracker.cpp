@@ -22,19 +22,6 @@ namespace vision {
 namespace {
 
 constexpr int kMaxRecent = 16;  ///< dropped-face areas remembered for the scan mask
-/// Per-frame shifts of a face's centre (working-image pixels) below this are the noise of a
-/// still image (sensor noise, light changing), not motion.
-constexpr float kStillShift = 0.25f;
-/// The first frames of a track settle its box (detections move it a few pixels).
-constexpr int kSettleFrames = 5;
-/// Fraction of a young track's corners that must follow its motion fit for the motion to count.
-constexpr float kCoherentFraction = 0.85f;
-/// Fraction of a track's corners that must each move along its shift (by half of it at least)
-/// for the shift to count as the face moving.
-constexpr float kMovedAsOneFraction = 0.75f;
-/// A Tentative face whose tracked roll turned this far since it started is checked for turning
-/// in the image (and again after each further step as far).
-constexpr float kTurnCheckDegrees = 4.f;
 /// Fraction of a track's corners that must survive a flow step for the face to count as held
 /// by them (the longer grace of FaceTrackerOptions::occludedGraceFrames).
 constexpr float kHeldFraction = 0.8f;
@@ -127,6 +114,7 @@ struct FaceTracker::Impl {
           motionIntegral(o.imageSize),
           imageRoll(o.rollByImageSymmetry ? std::make_unique<RollByImageSymmetry>() : nullptr),
           verifier(cascade, o, imageRoll.get()),
+          staticRule(o, imageRoll.get()),
           tilted(cascade, o)
     {
         options.detector.maxFrameSize = o.imageSize;
@@ -144,13 +132,10 @@ struct FaceTracker::Impl {
     bool process(const ConstImageView& gray, const ConstImageView& mask,
                  const IntegralImage* maskIntegral) noexcept;
     void trackPoints(Track& t) noexcept;
-    bool movedAsOne(int m, const MotionModel& model) const noexcept;
     void findCorners(Track& t, bool replenish) noexcept;
     void startTrack(Rect box, float rollHint) noexcept;
     float initialRoll(Track& t, float rollHint) noexcept;
-    bool turnedInImage(Track& t) noexcept;
     void prepareScanMask(const ConstImageView& mask) noexcept;
-    float motionFraction(Rect box) const noexcept;
     void drop(int index) noexcept;
     void publish() noexcept;
 
@@ -169,6 +154,7 @@ struct FaceTracker::Impl {
     bool haveMotion = false;
     std::unique_ptr<RollByImageSymmetry> imageRoll;  ///< null: corner symmetry only
     TrackVerifier verifier;  ///< fig. 89's upright-warped check of undetected tracks
+    StaticFaceRule staticRule;  ///< faces that never move (photos on the wall) are dropped
     std::vector<Track> tracks;                       ///< [0, trackCount) live, oldest first
     int trackCount = 0;
     int nextId = 1;
@@ -203,16 +189,6 @@ struct FaceTracker::Impl {
     std::array<Point2f, kMaxPoints> rollPoints{};
     char error[96] = "";
 };
-
-float FaceTracker::Impl::motionFraction(Rect box) const noexcept
-{
-    if (!haveMotion)
-        return 1.f;
-    // The inner half of the box: a head moving past a still face (a poster, a photo on the wall)
-    // sweeps the edges of its box far more than its middle.
-    return motion->maskFraction(
-        {box.x + box.width / 4, box.y + box.height / 4, box.width / 2, box.height / 2});
-}
 
 void FaceTracker::Impl::prepareScanMask(const ConstImageView& mask) noexcept
 {
@@ -297,12 +273,9 @@ void FaceTracker::Impl::trackPoints(Track& t) noexcept
     }
     const Point2f moved = model.apply(t.face.centre);
     const float shift = std::hypot(moved.x - t.face.centre.x, moved.y - t.face.centre.y);
-    // A young track's box may hold some background or a passing head, whose motion the fit
-    // can follow: its shifts count only when nearly all of its corners agree with them.
-    const bool coherent = t.face.age >= kSettleFrames || survived >= kCoherentFraction;
-    const bool asOne = coherent && movedAsOne(m, model);
-    if (shift > kStillShift && asOne)
-        t.path += shift;
+    const auto pairs = static_cast<std::size_t>(m);
+    staticRule.addFlowStep(t.motion, {{from.data(), pairs}, {to.data(), pairs},
+                                      {inliers.data(), pairs}, model, t.face.age, survived, shift});
     t.face.centre = moved;
     if (options.mode != FaceTrackingMode::Translation) {
         // Scale and roll of the similarity part (METHOD §3: th = atan2(a2, a1)).
@@ -311,8 +284,6 @@ void FaceTracker::Impl::trackPoints(Track& t) noexcept
         const float s = std::clamp(model.scale(), 0.95f, 1.05f);
         t.face.size *= s;
         t.face.rollDegrees += model.roll() * kRadToDeg;
-        if (asOne)
-            t.turn += model.roll() * kRadToDeg;
         t.face.rollDegrees = std::clamp(t.face.rollDegrees, -60.f, 60.f);
     }
     int k = 0;
@@ -321,34 +292,6 @@ void FaceTracker::Impl::trackPoints(Track& t) noexcept
             t.points[static_cast<std::size_t>(k++)] = to[static_cast<std::size_t>(i)];
     t.pointCount = k;
     t.face.confidence = std::min(1.f, survived);
-}
-
-bool FaceTracker::Impl::movedAsOne(int m, const MotionModel& model) const noexcept
-{
-    // A still face beside a moving one (a photo on the wall as someone passes it) has its fit
-    // pulled along by the corners nearest the passer-by, whose flow windows hold part of them:
-    // a robust fit keeps them all as inliers, yet only those few moved. A face that moves (or
-    // turns) moves all its corners as the fit says (measured: 93-100% of them, against 25-36%
-    // for a photo beside a passing head). Corners the fit hardly moves (near the centre of a
-    // turn) say nothing.
-    int along = 0, counted = 0;
-    for (int i = 0; i < m; ++i) {
-        if (!inliers[static_cast<std::size_t>(i)])
-            continue;
-        const Point2f a = from[static_cast<std::size_t>(i)];
-        const Point2f b = to[static_cast<std::size_t>(i)];
-        const Point2f p = model.apply(a);
-        const float dx = p.x - a.x;
-        const float dy = p.y - a.y;
-        const float d2 = dx * dx + dy * dy;
-        if (d2 < kStillShift * kStillShift * 0.25f)
-            continue;
-        // (b - a) . d >= |d|^2 / 2: moved along the fit by at least half of it.
-        along += (b.x - a.x) * dx + (b.y - a.y) * dy >= 0.5f * d2;
-        ++counted;
-    }
-    return counted > 0 &&
-           static_cast<float>(along) >= kMovedAsOneFraction * static_cast<float>(counted);
 }
 
 float FaceTracker::Impl::initialRoll(Track& t, float rollHint) noexcept
@@ -360,8 +303,8 @@ float FaceTracker::Impl::initialRoll(Track& t, float rollHint) noexcept
             imageRoll->estimate(grays[current].view(), t.face.centre, t.face.size);
         if (r.confidence >= kMinImageRollConfidence &&
             (rollHint == 0.f || std::fabs(r.rollDegrees - rollHint) <= 20.f)) {
-            t.imageRollAtStart = r.rollDegrees;
-            t.haveImageRollAtStart = true;
+            t.motion.imageRollAtStart = r.rollDegrees;
+            t.motion.haveImageRollAtStart = true;
             return r.rollDegrees;
         }
     }
@@ -375,24 +318,6 @@ float FaceTracker::Impl::initialRoll(Track& t, float rollHint) noexcept
         std::span<const Point2f>(rollPoints.data(), static_cast<std::size_t>(n)), t.face.centre,
         t.face.size);
     return r.confidence > 0.f ? r.rollDegrees : 0.f;
-}
-
-bool FaceTracker::Impl::turnedInImage(Track& t) noexcept
-{
-    // A face turning about its own centre (a head tilting from side to side) hardly moves its
-    // centre, so `path` misses it. Its tracked roll does turn, but corners near a face moving past
-    // a still one can turn that one's fit too (the edge of the passer-by uncovers and covers it):
-    // the turn counts only when the image's symmetry, measured afresh, turned the same way.
-    if (!imageRoll || !t.haveImageRollAtStart || options.mode == FaceTrackingMode::Translation)
-        return false;
-    if (std::fabs(t.turn) < std::fabs(t.rollChecked) + kTurnCheckDegrees)
-        return false;
-    t.rollChecked = t.turn;
-    const RollEstimate r = imageRoll->estimate(grays[current].view(), t.face.centre, t.face.size);
-    if (r.confidence < kMinImageRollConfidence)
-        return false;
-    const float seen = r.rollDegrees - t.imageRollAtStart;
-    return seen * t.turn > 0.f && std::fabs(seen) >= 0.5f * kTurnCheckDegrees;
 }
 
 void FaceTracker::Impl::startTrack(Rect box, float rollHint) noexcept
@@ -411,12 +336,8 @@ void FaceTracker::Impl::startTrack(Rect box, float rollHint) noexcept
     t.face.state = options.confirmFrames <= 1 ? FaceState::Confirmed : FaceState::Tentative;
     t.face.confidence = 1.f / static_cast<float>(options.confirmFrames);
     // A face found still is not shown until it moves; it is dropped if it never does.
-    // A tilted scan's hit must show motion of its own (see Track::tiltFound).
-    t.tiltFound = rollHint != 0.f;
-    t.lastMotionFrame = !t.tiltFound && motionFraction(box) >= options.minFaceMotionFraction
-                            ? frameIndex
-                            : frameIndex - options.confirmMotionFrames - 1;
-    if (t.face.state == FaceState::Confirmed && t.lastMotionFrame != frameIndex)
+    const bool moving = staticRule.start(t.motion, box, rollHint != 0.f);
+    if (t.face.state == FaceState::Confirmed && !moving)
         t.face.state = FaceState::Tentative;
     t.detectedThisFrame = true;
     if (options.mode != FaceTrackingMode::None)
@@ -480,6 +401,7 @@ bool FaceTracker::Impl::process(const ConstImageView& gray, const ConstImageView
         else
             motionIntegral.compute(mask);
     }
+    staticRule.beginFrame(grays[current].view(), haveMotion ? motion : nullptr, frameIndex);
 
     // 1. Existing tracks follow their corners.
     for (int i = 0; i < trackCount; ++i) {
@@ -629,34 +551,9 @@ bool FaceTracker::Impl::process(const ConstImageView& gray, const ConstImageView
                 ++t.face.misses;
             }
         }
-        // Static regions are ignored: a face shows it is a person by moving, i.e. its centre
-        // leaving the place it last moved from by a few percent of its size (a photo on the wall
-        // stays put, whatever the light does to the motion mask), or by a box full of motion.
-        // Detector only: the first frames of a track settle its box (detections move it a few
-        // pixels): they are no evidence either way. Tracking measures the motion of the face's
-        // corners, which re-anchoring does not add to, so it counts from the first frame.
-        if (options.mode == FaceTrackingMode::None) {
-            // Detections jitter by a pixel or so from frame to frame.
-            const float jump =
-                std::hypot(t.face.centre.x - t.lastCentre.x, t.face.centre.y - t.lastCentre.y);
-            if (t.face.age > 0 && jump > 1.5f)
-                t.path += jump;
-            t.lastCentre = t.face.centre;
-        }
-        if (options.mode == FaceTrackingMode::None && t.face.age < kSettleFrames)
-            t.anchor = t.path;
-        const float step = std::max(1.0f, options.minFaceMoveFraction * t.face.size);
-        const bool maskCounts = !(t.tiltFound && t.face.state == FaceState::Tentative);
-        if (t.path - t.anchor > step ||
-            (maskCounts && motionFraction(t.face.box()) >= options.minFaceMotionFraction) ||
-            (haveMotion && t.face.state == FaceState::Tentative && seen && turnedInImage(t))) {
-            t.lastMotionFrame = frameIndex;
-            t.anchor = t.path;
-        }
-        const bool moved =
-            !haveMotion || frameIndex - t.lastMotionFrame <= options.staticDropFrames;
-        const bool movedLately =
-            !haveMotion || frameIndex - t.lastMotionFrame <= options.confirmMotionFrames;
+        // Static regions are ignored (StaticFaceRule): a face shows it is a person by moving.
+        const StaticFaceRule::Verdict still = staticRule.observe(t.motion, t.face, seen);
+        const bool movedLately = still.movedLately;
         bool keep = true;
         if (t.face.state == FaceState::Tentative) {
             if (!seen)
@@ -671,13 +568,7 @@ bool FaceTracker::Impl::process(const ConstImageView& gray, const ConstImageView
         } else {
             t.face.state = FaceState::Missing;
         }
-        // A face found still (a photo on the wall, detected while someone moved nearby) is
-        // never shown and is let go; a shown face that stops moving stays until it has been
-        // still for a long time (a person may stand still in front of a mirror).
-        if (t.face.state == FaceState::Tentative && !movedLately &&
-            t.face.age > 2 * options.confirmMotionFrames)
-            keep = false;
-        if (!moved)
+        if (!staticRule.keeps(still, t.face))
             keep = false;
         if (keep && options.mode != FaceTrackingMode::None && seen &&
             t.pointCount < options.minCornersPerFace)
