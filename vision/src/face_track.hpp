@@ -22,6 +22,7 @@ struct Track {
     int pointCount = 0;
     int verifiedSinceAnchor = 0;  ///< TrackVerifier's count since the last re-anchoring
     bool detectedThisFrame = false;
+    bool seen = false;  ///< detected or verified this frame (step 4, for step 5)
     /// The last flow step kept most of the corners on one rigid motion: the face is still
     /// there, whatever the cascade says (a hand or another head over part of it, a turned head).
     bool heldByCorners = false;

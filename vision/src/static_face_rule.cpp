@@ -9,8 +9,9 @@
 // possibility of static regions of the background being falsely detected as faces"). A face on
 // the wall beside a moving person is inside the mask all the same (the person's motion, a
 // recently seen face, the light changing), so the tracker also asks each track to show it moves:
-// its centre leaving the place it last moved from by a few percent of its size, a box full of
-// motion, or (not yet shown) a turn in place that the image's symmetry agrees with. A photo
+// its centre leaving the place it last moved from by a few percent of its size (only flow steps
+// that moved nearly all of its corners count), a box full of motion, or (not yet shown) a turn
+// in place by a few degrees that the image's symmetry agrees with. A photo
 // does none of these: its mask fraction stays at a few percent (lighting changes can raise it,
 // hence the high threshold), and a passer-by drags only the corners nearest to it.
 
@@ -165,7 +166,8 @@ bool StaticFaceRule::keeps(const Verdict& v, const TrackedFace& face) const noex
 {
     // A face found still (a photo on the wall, detected while someone moved nearby) is never
     // shown and is let go; a shown face that stops moving stays until it has been still for a
-    // long time (a person may stand still in front of a mirror).
+    // long time: staticDropFrames catches a photo that slipped through, while a person standing
+    // still in front of the mirror keeps their hat much longer.
     if (face.state == FaceState::Tentative && !v.movedLately &&
         face.age > 2 * options_.confirmMotionFrames)
         return false;

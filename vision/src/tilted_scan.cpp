@@ -15,9 +15,6 @@ namespace vision {
 
 namespace {
 
-/// The motion mask of the scanned region is resampled to this square (the detector maps a mask
-/// of any resolution proportionally onto the image).
-constexpr int kTiltMaskSide = 64;
 /// Moving regions are looked for in cells of this many pixels.
 constexpr int kTiltCell = 8;
 /// A tracked face's motion (its trail included) covers its box enlarged by this factor.
@@ -53,8 +50,8 @@ TiltedScan::TiltedScan(const HaarCascade& cascade, const FaceTrackerOptions& opt
     const FaceDetectorOptions t = tiltOptions(options);
     detector_ = std::make_unique<FaceDetector>(cascade, t);
     gray_ = ImageBuffer(t.maxFrameSize.width, t.maxFrameSize.height, PixelFormat::Gray8);
-    mask_ = ImageBuffer(kTiltMaskSide, kTiltMaskSide, PixelFormat::Gray8);
-    maskIntegral_ = IntegralImage({kTiltMaskSide, kTiltMaskSide});
+    mask_ = ImageBuffer(kMaskSide, kMaskSide, PixelFormat::Gray8);
+    maskIntegral_ = IntegralImage({kMaskSide, kMaskSide});
     // Both angles may complete in one frame.
     const auto perScan = static_cast<std::size_t>(std::max(1, options.detector.maxFaces));
     hits_.resize(2 * perScan);
@@ -166,8 +163,8 @@ long TiltedScan::step(const Frame& frame, long budget) noexcept
     region.width = size_.width;
     region.height = size_.height;
     warpRotated(frame.gray, centre_, angle_, 1.f, 1.f, region);
-    warpRotated(frame.scanMask, centre_, angle_, static_cast<float>(size_.width) / kTiltMaskSide,
-                static_cast<float>(size_.height) / kTiltMaskSide, mask_.view());
+    warpRotated(frame.scanMask, centre_, angle_, static_cast<float>(size_.width) / kMaskSide,
+                static_cast<float>(size_.height) / kMaskSide, mask_.view());
     maskIntegral_.compute(mask_.view());
     const int excludedCount = excludeTracks(frame.tracks);
     const bool completed = detector_->detectMaskedIncremental(

@@ -53,6 +53,9 @@ public:
     void reset() noexcept;
 
 private:
+    /// The motion mask of the scanned region is resampled to this square (the detector maps a
+    /// mask of any resolution proportionally onto the image).
+    static constexpr int kMaskSide = 64;
     /// This scan's rotation (cosine, sine) and the turned region's half sides.
     struct Turn {
         float c, n, hw, hh;
@@ -66,16 +69,16 @@ private:
     FaceTrackerOptions options_;
     std::unique_ptr<FaceDetector> detector_;  ///< null when off
     ImageBuffer gray_;  ///< the region turned upright at the scan's angle (top-left part)
-    ImageBuffer mask_;  ///< the region's scan mask, resampled to kTiltMaskSide squared
+    ImageBuffer mask_;  ///< the region's scan mask, resampled to kMaskSide squared
     IntegralImage maskIntegral_;
-    bool active_ = false;     ///< a tilted scan is in progress over centre_ / size_
-    Point2f centre_{};        ///< image point at the region's centre
-    Size size_{};             ///< region in the turned image (pixels as the image's)
-    float angle_ = 0.f;       ///< this scan's angle
-    float nextSign_ = 1.f;    ///< the next scan turns by this sign times tiltScanDegrees
+    bool active_ = false;   ///< a tilted scan is in progress over centre_ / size_
+    Point2f centre_{};      ///< image point at the region's centre
+    Size size_{};           ///< region in the turned image (pixels as the image's)
+    float angle_ = 0.f;     ///< this scan's angle
+    float nextSign_ = 1.f;  ///< the next scan turns by this sign times tiltScanDegrees
     std::array<Rect, kMaxTracks> excluded_{};
-    std::vector<Rect> hits_;        ///< the last completed tilted scan's faces (image boxes)
-    std::vector<float> hitRolls_;   ///< the angle of the scan that found each
+    std::vector<Rect> hits_;       ///< the last completed tilted scan's faces (image boxes)
+    std::vector<float> hitRolls_;  ///< the angle of the scan that found each
     int count_ = 0;
     bool done_ = false;  ///< a tilted scan completed this frame
 };
