@@ -1,111 +1,36 @@
 #include "vision/face_tracker.hpp"
 
-#include "vision/corner_detector.hpp"
-#include "vision/image_pyramid.hpp"
+#include "corner_flow.hpp"
+#include "face_search.hpp"
+#include "face_track.hpp"
+#include "static_face_rule.hpp"
+#include "tilted_scan.hpp"
+#include "track_verifier.hpp"
 #include "vision/roll_by_image_symmetry.hpp"
 #include "vision/roll_estimator.hpp"
-#include "vision/upright_patch.hpp"
 
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdio>
-#include <cstring>
-#include <limits>
 #include <stdexcept>
 #include <vector>
+
+// The dissertation's fig. 89 (5.1.3; METHOD.md §3, "Integration"), one frame:
+//   motion detection                  -> MotionStage, before the tracker (its mask comes in)
+//   update face poses                 -> step 1, updateFacePoses()
+//   create face search mask,
+//   face detection on masked area     -> step 2, detectInSearchMask() (FaceSearch, TiltedScan)
+//   overlap? keep face / add face     -> step 3, keepOrAddDetected()
+//   warp face to frontal pose,
+//   face detection on warped image    -> step 4, verifyUndetected() (TrackVerifier)
+//   keep face / discard face          -> step 5, confirmOrDiscard(), with the text's n detections
+//                                        before a face is shown and m failures before it is
+//                                        dropped, and StaticFaceRule for faces that never move.
 
 namespace vision {
 
 namespace {
-
-constexpr int kMaxPoints = 64;  ///< corners kept per track
-constexpr int kMaxRecent = 16;  ///< dropped-face areas remembered for the scan mask
-constexpr int kMaxTracks = 32;  ///< hard cap on options.maxFaces
-constexpr float kRadToDeg = 57.29577951308232f;
-/// The verification patch shows the face box enlarged by this factor: the detector's window
-/// must fit around the face at a few scales.
-constexpr float kVerifyContext = 1.6f;
-/// Per-frame shifts of a face's centre (working-image pixels) below this are the noise of a
-/// still image (sensor noise, light changing), not motion.
-constexpr float kStillShift = 0.25f;
-/// Image-symmetry roll estimates less sure than this are not used (RollEstimate::confidence).
-constexpr float kMinImageRollConfidence = 0.15f;
-/// Tilted scans: the motion mask of the scanned region is resampled to this square (the
-/// detector maps a mask of any resolution proportionally onto the image).
-constexpr int kTiltMaskSide = 64;
-/// Tilted scans look for moving regions in cells of this many pixels.
-constexpr int kTiltCell = 8;
-/// A tracked face's motion (its trail included) covers its box enlarged by this factor.
-constexpr float kTrackMotionReach = 1.5f;
-/// Tilted scans cost as much as upright ones per window and there are two angles: only
-/// windows (and cells) this full of motion, as a moving face's box is (about 0.7 on average).
-constexpr float kTiltMinMaskFraction = 0.4f;
-constexpr float kDegToRad = 1.f / kRadToDeg;
-/// Verification retries this far either side of the tracked roll (the upright cascade finds
-/// faces within about +-15 degrees).
-constexpr float kVerifyRollStep = 12.f;
-/// The first frames of a track settle its box (detections move it a few pixels).
-constexpr int kSettleFrames = 5;
-/// Fraction of a young track's corners that must follow its motion fit for the motion to count.
-constexpr float kCoherentFraction = 0.85f;
-/// Fraction of a track's corners that must each move along its shift (by half of it at least)
-/// for the shift to count as the face moving.
-constexpr float kMovedAsOneFraction = 0.75f;
-/// A Tentative face whose tracked roll turned this far since it started is checked for turning
-/// in the image (and again after each further step as far).
-constexpr float kTurnCheckDegrees = 4.f;
-/// Fraction of a track's corners that must survive a flow step for the face to count as held
-/// by them (the longer grace of FaceTrackerOptions::occludedGraceFrames).
-constexpr float kHeldFraction = 0.8f;
-
-/// The rotated image of a w x h image, turned by `degrees`, fits in this box (plus a margin).
-Size rotatedCanvas(Size s, float degrees) noexcept
-{
-    const float c = std::fabs(std::cos(degrees * kDegToRad));
-    const float n = std::fabs(std::sin(degrees * kDegToRad));
-    const float w = static_cast<float>(s.width) * c + static_cast<float>(s.height) * n;
-    const float h = static_cast<float>(s.width) * n + static_cast<float>(s.height) * c;
-    return {static_cast<int>(std::ceil(w)) + 16, static_cast<int>(std::ceil(h)) + 16};
-}
-
-struct Track {
-    TrackedFace face;
-    std::array<Point2f, kMaxPoints> points{};
-    int pointCount = 0;
-    int lastMotionFrame = 0;  ///< frame index of the last frame the face showed it moves
-    float anchor = 0.f;       ///< `path` when the face last moved
-    /// How far the image content of the face has travelled since the track began: the sum of
-    /// the per-frame shifts of its centre by the motion model (tracking modes) or of the centre
-    /// itself (detector only), each counted only above the noise of a still image. A person
-    /// never holds perfectly still (a talking head wobbles back and forth, which a net
-    /// displacement would cancel); a photo's shifts stay in the noise. Re-anchoring the box on
-    /// a detection is not motion and does not count.
-    float path = 0.f;
-    Point2f lastCentre{};
-    int verifiedSinceAnchor = 0;
-    bool detectedThisFrame = false;
-    /// The last flow step kept most of the corners on one rigid motion: the face is still
-    /// there, whatever the cascade says (a hand or another head over part of it, a turned head).
-    bool heldByCorners = false;
-    /// Started by a tilted scan's hit: until shown, only the motion of its corners (`path`)
-    /// shows it moves, not the motion mask. The turned regions offer the cascade more windows,
-    /// hence more chance hits on still faces, and a changing light can fill a still face's box
-    /// with foreground.
-    bool tiltFound = false;
-    /// How far its roll turned since it started, by flow steps that moved all of the face
-    /// (movedAsOne), and (when confident) the image symmetry's roll at the start: a face turning
-    /// in place shows it moves when the image agrees it turned (turnedInImage).
-    float turn = 0.f;
-    float imageRollAtStart = 0.f;
-    bool haveImageRollAtStart = false;
-    float rollChecked = 0.f;  ///< the tracked turn at the last such check
-};
-
-struct RecentArea {
-    Rect box;
-    int expires = 0;  ///< frame index after which the area is forgotten
-};
 
 float iou(Rect a, Rect b) noexcept
 {
@@ -121,13 +46,10 @@ float iou(Rect a, Rect b) noexcept
     return uni > 0.f ? inter / uni : 0.f;
 }
 
-Rect clip(Rect r, Size s) noexcept
+Point2f centreOf(Rect box) noexcept
 {
-    const int x0 = std::clamp(r.x, 0, s.width);
-    const int y0 = std::clamp(r.y, 0, s.height);
-    const int x1 = std::clamp(r.x + r.width, 0, s.width);
-    const int y1 = std::clamp(r.y + r.height, 0, s.height);
-    return {x0, y0, x1 - x0, y1 - y0};
+    return {static_cast<float>(box.x) + static_cast<float>(box.width) * 0.5f,
+            static_cast<float>(box.y) + static_cast<float>(box.height) * 0.5f};
 }
 
 MotionKind fitKind(FaceTrackingMode mode) noexcept
@@ -142,33 +64,12 @@ MotionKind fitKind(FaceTrackingMode mode) noexcept
     }
 }
 
-FaceDetectorOptions scanOptions(const FaceTrackerOptions& o)
+/// The options as the tracker runs them (and reports them).
+FaceTrackerOptions effective(FaceTrackerOptions o) noexcept
 {
-    FaceDetectorOptions d = o.detector;
-    d.maxFrameSize = o.imageSize;
-    return d;
-}
-
-FaceDetectorOptions tiltOptions(const FaceTrackerOptions& o)
-{
-    FaceDetectorOptions d = o.detector;
-    d.maxFrameSize = rotatedCanvas(o.imageSize, o.tiltScanDegrees);
-    return d;
-}
-
-FaceDetectorOptions verifyOptions(const FaceTrackerOptions& o, Size window)
-{
-    // The face fills about 1 / kVerifyContext of the patch; scan from the smallest window up to
-    // the whole patch with the scan's scale factor.
-    FaceDetectorOptions d;
-    d.maxFrameSize = {o.verifyPatchSize, o.verifyPatchSize};
-    d.scaleFactor = o.detector.scaleFactor;
-    d.minNeighbors = 1;
-    d.minSize = window;
-    d.maxSize = {o.verifyPatchSize, o.verifyPatchSize};
-    d.maxRawHits = 1024;
-    d.maxFaces = 16;
-    return d;
+    o.detector.maxFrameSize = o.imageSize;
+    o.fit.kind = fitKind(o.mode);
+    return o;
 }
 
 void validate(const FaceTrackerOptions& o)
@@ -199,583 +100,85 @@ void validate(const FaceTrackerOptions& o)
 
 struct FaceTracker::Impl {
     explicit Impl(const HaarCascade& cascade, const FaceTrackerOptions& o)
-        : options(o),
-          scan(cascade, scanOptions(o)),
-          verify(cascade, verifyOptions(o, {cascade.windowWidth, cascade.windowHeight})),
-          corners(o.imageSize, CornerDetectorOptions{kMaxPoints, 0.01f, 5.f, 3}),
-          flow(o.flow),
-          pyramids{ImagePyramid(o.imageSize, o.flow.maxLevel + 1),
-                   ImagePyramid(o.imageSize, o.flow.maxLevel + 1)},
-          grays{ImageBuffer(o.imageSize.width, o.imageSize.height, PixelFormat::Gray8),
-                ImageBuffer(o.imageSize.width, o.imageSize.height, PixelFormat::Gray8)},
-          scanMask(o.imageSize.width, o.imageSize.height, PixelFormat::Gray8),
-          scanMaskIntegral(o.imageSize),
+        : options(effective(o)),
+          cornerFlow(options),
+          search(cascade, options),
           motionIntegral(o.imageSize),
-          patch(o.verifyPatchSize, o.verifyPatchSize, PixelFormat::Gray8)
+          imageRoll(o.rollByImageSymmetry ? std::make_unique<RollByImageSymmetry>() : nullptr),
+          verifier(cascade, options, imageRoll.get()),
+          staticRule(options, imageRoll.get()),
+          tilted(cascade, options)
     {
-        if (o.rollByImageSymmetry)
-            imageRoll = std::make_unique<RollByImageSymmetry>();
-        if (options.tiltScanDegrees > 0.f) {
-            const FaceDetectorOptions t = tiltOptions(o);
-            tiltScan = std::make_unique<FaceDetector>(cascade, t);
-            tiltGray = ImageBuffer(t.maxFrameSize.width, t.maxFrameSize.height, PixelFormat::Gray8);
-            tiltMask = ImageBuffer(kTiltMaskSide, kTiltMaskSide, PixelFormat::Gray8);
-            tiltMaskIntegral = IntegralImage({kTiltMaskSide, kTiltMaskSide});
-        }
-        options.detector.maxFrameSize = o.imageSize;
-        options.fit.kind = fitKind(o.mode);
         tracks.resize(static_cast<std::size_t>(o.maxFaces));
         outFaces.resize(static_cast<std::size_t>(o.maxFaces));
-        const auto capacity = static_cast<std::size_t>(std::max(1, o.detector.maxFaces));
-        uprightHits.resize(capacity);
-        // Both angles may complete in one frame.
-        tiltHits.resize(options.tiltScanDegrees > 0.f ? 2 * capacity : 0);
-        tiltHitRolls.resize(tiltHits.size());
-        outDetections.resize(uprightHits.size() + tiltHits.size());
-        excluded.resize(static_cast<std::size_t>(o.maxFaces));
-        std::memset(scanMask.view().data, 0, scanMask.bytes());
-        scanMaskIntegral.compute(scanMask.view());
+        outDetections.resize(search.capacity() + tilted.capacity());
     }
 
     bool process(const ConstImageView& gray, const ConstImageView& mask,
                  const IntegralImage* maskIntegral) noexcept;
-    void trackPoints(Track& t) noexcept;
-    bool movedAsOne(int m, const MotionModel& model) const noexcept;
-    void findCorners(Track& t, bool replenish) noexcept;
-    void startTrack(Rect box, float rollHint) noexcept;
-    float initialRoll(Track& t, float rollHint) noexcept;
-    bool turnedInImage(Track& t) noexcept;
-    bool chooseTiltRegion() noexcept;
-    long tiltScanStep(long budget) noexcept;
-    void correctRoll(Track& t) noexcept;
-    bool verifyTrack(Track& t) noexcept;
-    bool verifyAt(Track& t, float roll) noexcept;
-    void prepareScanMask(const ConstImageView& mask) noexcept;
-    float motionFraction(Rect box) const noexcept;
-    void drop(int index) noexcept;
+    bool accept(const ConstImageView& gray, const ConstImageView& mask) noexcept;
+    void beginFrame(const ConstImageView& gray, const ConstImageView& mask,
+                    const IntegralImage* maskIntegral) noexcept;
+    void updateFacePoses() noexcept;
+    void detectInSearchMask(const ConstImageView& mask) noexcept;
+    void keepOrAddDetected() noexcept;
+    void verifyUndetected() noexcept;
+    void confirmOrDiscard() noexcept;
     void publish() noexcept;
 
+    void dropLostTracks() noexcept;
+    long tiltBudget() const noexcept;
+    void collectDetections() noexcept;
+    void match(Rect box, float rollHint) noexcept;
+    void startTrack(Rect box, float rollHint) noexcept;
+    float initialRoll(Track& t, float rollHint) noexcept;
+    bool keeps(Track& t) noexcept;
+    void drop(int index) noexcept;
+    std::span<const Track> live() const noexcept
+    {
+        return {tracks.data(), static_cast<std::size_t>(trackCount)};
+    }
+    ConstImageView image() const noexcept { return cornerFlow.image(); }
+
     FaceTrackerOptions options;
-    FaceDetector scan;
-    FaceDetector verify;
-    CornerDetector corners;
-    PyramidalLucasKanade flow;
-    ImagePyramid pyramids[2];
-    ImageBuffer grays[2];
-    int current = 0;  ///< index of this frame's gray / pyramid
-    bool havePrevious = false;
-    ImageBuffer scanMask;
-    IntegralImage scanMaskIntegral;
+    CornerFlow cornerFlow;  ///< step 1: the images, and the tracks' corners and their flow
+    FaceSearch search;      ///< step 2: the upright scan of the search mask
     IntegralImage motionIntegral;
-    const IntegralImage* motion = nullptr;  ///< this frame's mask integral (ours or the caller's)
-    bool haveMotion = false;
-    ImageBuffer patch;
+    const IntegralImage* motion = nullptr;  ///< this frame's mask integral; null: no mask
     std::unique_ptr<RollByImageSymmetry> imageRoll;  ///< null: corner symmetry only
-    std::vector<Track> tracks;                       ///< [0, trackCount) live, oldest first
+    TrackVerifier verifier;     ///< step 4: fig. 89's upright-warped check
+    StaticFaceRule staticRule;  ///< step 5: faces that never move (photos on the wall) go
+    TiltedScan tilted;          ///< step 2: the moving regions no track covers, turned
+    std::vector<Track> tracks;  ///< [0, trackCount) live, oldest first
     int trackCount = 0;
     int nextId = 1;
     int frameIndex = 0;
-    /// Until the first scan after construction or reset() completes, or the motion mask first
-    /// marks something, the whole image is scanned: nothing is known yet of what moves (a motion
-    /// model that has seen one frame marks nothing), so every face is found and the static rule
-    /// (step 5) tells still from moving. A scan spread over frames by the window budget goes on
-    /// masked once there is motion (a whole-image scan would keep a moving face waiting).
-    bool coldStart = true;
-    std::array<RecentArea, kMaxRecent> recent{};
 
     std::vector<TrackedFace> outFaces;
     std::vector<Rect> outDetections;
     int detectionCount = 0;
-    std::vector<Rect> uprightHits;  ///< the last completed upright scan's faces
-    int uprightCount = 0;
-
-    // Tilted scans of the moving regions no track covers (null / empty when off).
-    std::unique_ptr<FaceDetector> tiltScan;
-    ImageBuffer tiltGray;  ///< the region turned upright at the scan's angle (top-left part)
-    ImageBuffer tiltMask;  ///< the region's scan mask, resampled to kTiltMaskSide squared
-    IntegralImage tiltMaskIntegral;
-    bool tiltActive = false;   ///< a tilted scan is in progress over tiltCentre / tiltSize
-    Point2f tiltCentre{};      ///< image point at the region's centre
-    Size tiltSize{};           ///< region in the turned image (pixels as the image's)
-    float tiltAngle = 0.f;     ///< this scan's angle
-    float nextTiltSign = 1.f;  ///< the next scan turns by this sign times tiltScanDegrees
-    std::array<Rect, kMaxTracks> tiltExcluded{};
-    std::vector<Rect> tiltHits;       ///< the last completed tilted scan's faces (image boxes)
-    std::vector<float> tiltHitRolls;  ///< the angle of the scan that found each
-    int tiltCount = 0;
-    bool tiltDone = false;  ///< a tilted scan completed this frame
-
-    std::vector<Rect> excluded;
-    bool scanDone = false;
     long windows = 0;
 
-    // Per-track flow scratch.
-    std::array<Point2f, kMaxPoints> next{};
-    std::array<FlowStatus, kMaxPoints> status{};
-    std::array<Point2f, kMaxPoints> from{};
-    std::array<Point2f, kMaxPoints> to{};
-    std::array<std::uint8_t, kMaxPoints> inliers{};
-    std::array<Corner, kMaxPoints> found{};
-    std::array<Point2f, kMaxPoints> rollPoints{};
+    std::array<Point2f, kMaxPoints> rollPoints{};  ///< initialRoll's scratch
     char error[96] = "";
 };
 
-float FaceTracker::Impl::motionFraction(Rect box) const noexcept
-{
-    if (!haveMotion)
-        return 1.f;
-    // The inner half of the box: a head moving past a still face (a poster, a photo on the wall)
-    // sweeps the edges of its box far more than its middle.
-    return motion->maskFraction(
-        {box.x + box.width / 4, box.y + box.height / 4, box.width / 2, box.height / 2});
-}
-
-void FaceTracker::Impl::prepareScanMask(const ConstImageView& mask) noexcept
-{
-    // 3 "Detection": scan where there is motion, or where a face was seen recently (a face that
-    // stops moving for a moment must still be found again).
-    const Size s = options.imageSize;
-    if (coldStart) {
-        std::memset(scanMask.view().data, 255, scanMask.bytes());
-        scanMaskIntegral.compute(scanMask.view());
-        return;
-    }
-    for (int y = 0; y < s.height; ++y)
-        std::memcpy(scanMask.view().row(y), mask.row(y), static_cast<std::size_t>(s.width));
-    for (RecentArea& a : recent) {
-        if (a.expires < frameIndex || a.box.width <= 0)
-            continue;
-        const Rect r = clip(a.box, s);
-        for (int y = r.y; y < r.y + r.height; ++y)
-            std::memset(scanMask.view().row(y) + r.x, 255, static_cast<std::size_t>(r.width));
-    }
-    scanMaskIntegral.compute(scanMask.view());
-}
-
-void FaceTracker::Impl::findCorners(Track& t, bool replenish) noexcept
-{
-    // 3 "Tracking": Shi-Tomasi corners in the face box, spaced in proportion to the face size.
-    const float minDistance = std::max(2.f, t.face.size * options.cornerMinDistanceFraction);
-    corners.setMinDistance(minDistance);
-    corners.setMaxCorners(options.maxCornersPerFace);
-    // The inner part of the box: the box corners are often background or hair, which do not
-    // move with the face.
-    const float inner = t.face.size * 0.7f;
-    const Rect area{static_cast<int>(t.face.centre.x - inner * 0.5f),
-                    static_cast<int>(t.face.centre.y - inner * 0.5f), static_cast<int>(inner),
-                    static_cast<int>(inner)};
-    const int n = corners.detect(grays[current].view(), area, found.data(), kMaxPoints);
-    if (!replenish)
-        t.pointCount = 0;
-    const float minSq = minDistance * minDistance;
-    for (int i = 0; i < n && t.pointCount < options.maxCornersPerFace; ++i) {
-        const Point2f p = found[static_cast<std::size_t>(i)].position;
-        bool nearExisting = false;
-        for (int k = 0; k < t.pointCount && !nearExisting; ++k) {
-            const float dx = t.points[static_cast<std::size_t>(k)].x - p.x;
-            const float dy = t.points[static_cast<std::size_t>(k)].y - p.y;
-            nearExisting = dx * dx + dy * dy < minSq;
-        }
-        if (!nearExisting)
-            t.points[static_cast<std::size_t>(t.pointCount++)] = p;
-    }
-}
-
-void FaceTracker::Impl::trackPoints(Track& t) noexcept
-{
-    const ImagePyramid& prev = pyramids[1 - current];
-    const ImagePyramid& cur = pyramids[current];
-    const int n = t.pointCount;
-    if (n == 0)
-        return;
-    flow.track(prev, cur, t.points.data(), next.data(), status.data(), n);
-    int m = 0;
-    for (int i = 0; i < n; ++i) {
-        if (status[static_cast<std::size_t>(i)] != FlowStatus::Tracked)
-            continue;
-        from[static_cast<std::size_t>(m)] = t.points[static_cast<std::size_t>(i)];
-        to[static_cast<std::size_t>(m)] = next[static_cast<std::size_t>(i)];
-        ++m;
-    }
-    const int minimum = options.mode == FaceTrackingMode::Affine ? 4 : 3;
-    MotionModel model;
-    const int in = m >= minimum ? fitMotionRobust(from.data(), to.data(), m, t.face.centre,
-                                                  options.fit, model, inliers.data())
-                                : 0;
-    const float survived = n > 0 ? static_cast<float>(in) / static_cast<float>(n) : 0.f;
-    t.heldByCorners =
-        in >= std::max(minimum, options.minCornersPerFace / 2) && survived >= kHeldFraction;
-    if (in < minimum) {
-        // Nothing reliable moved: keep the box where it was, start the corners afresh.
-        t.pointCount = 0;
-        t.face.confidence *= 0.5f;
-        return;
-    }
-    const Point2f moved = model.apply(t.face.centre);
-    const float shift = std::hypot(moved.x - t.face.centre.x, moved.y - t.face.centre.y);
-    // A young track's box may hold some background or a passing head, whose motion the fit
-    // can follow: its shifts count only when nearly all of its corners agree with them.
-    const bool coherent = t.face.age >= kSettleFrames || survived >= kCoherentFraction;
-    const bool asOne = coherent && movedAsOne(m, model);
-    if (shift > kStillShift && asOne)
-        t.path += shift;
-    t.face.centre = moved;
-    if (options.mode != FaceTrackingMode::Translation) {
-        // Scale and roll of the similarity part (METHOD §3: th = atan2(a2, a1)).
-        // A face does not change size by more than a few percent between frames; larger fitted
-        // scales come from corners on the background or hair.
-        const float s = std::clamp(model.scale(), 0.95f, 1.05f);
-        t.face.size *= s;
-        t.face.rollDegrees += model.roll() * kRadToDeg;
-        if (asOne)
-            t.turn += model.roll() * kRadToDeg;
-        t.face.rollDegrees = std::clamp(t.face.rollDegrees, -60.f, 60.f);
-    }
-    int k = 0;
-    for (int i = 0; i < m; ++i)
-        if (inliers[static_cast<std::size_t>(i)])
-            t.points[static_cast<std::size_t>(k++)] = to[static_cast<std::size_t>(i)];
-    t.pointCount = k;
-    t.face.confidence = std::min(1.f, survived);
-}
-
-bool FaceTracker::Impl::movedAsOne(int m, const MotionModel& model) const noexcept
-{
-    // A still face beside a moving one (a photo on the wall as someone passes it) has its fit
-    // pulled along by the corners nearest the passer-by, whose flow windows hold part of them:
-    // a robust fit keeps them all as inliers, yet only those few moved. A face that moves (or
-    // turns) moves all its corners as the fit says (measured: 93-100% of them, against 25-36%
-    // for a photo beside a passing head). Corners the fit hardly moves (near the centre of a
-    // turn) say nothing.
-    int along = 0, counted = 0;
-    for (int i = 0; i < m; ++i) {
-        if (!inliers[static_cast<std::size_t>(i)])
-            continue;
-        const Point2f a = from[static_cast<std::size_t>(i)];
-        const Point2f b = to[static_cast<std::size_t>(i)];
-        const Point2f p = model.apply(a);
-        const float dx = p.x - a.x;
-        const float dy = p.y - a.y;
-        const float d2 = dx * dx + dy * dy;
-        if (d2 < kStillShift * kStillShift * 0.25f)
-            continue;
-        // (b - a) . d >= |d|^2 / 2: moved along the fit by at least half of it.
-        along += (b.x - a.x) * dx + (b.y - a.y) * dy >= 0.5f * d2;
-        ++counted;
-    }
-    return counted > 0 &&
-           static_cast<float>(along) >= kMovedAsOneFraction * static_cast<float>(counted);
-}
-
-bool FaceTracker::Impl::verifyTrack(Track& t) noexcept
-{
-    // Fig. 89: a track with no detection is verified by warping its face upright by the tracked
-    // roll into a small patch and running first-hit detection on it.
-    if (options.mode == FaceTrackingMode::Translation)
-        return verifyAt(t, 0.f);
-    if (verifyAt(t, t.face.rollDegrees))
-        return true;
-    // The tracked roll drifts (corners on hair and outline): a shown face the cascade no longer
-    // finds at it is tried once either side, within the cascade's reach, and the roll moves
-    // towards where it was found. Not a Tentative one: those get no grace (a still photo that
-    // lingers as a track would in time be confirmed by the light changing on it).
-    if (t.face.state == FaceState::Tentative)
-        return false;
-    for (const float d : {-kVerifyRollStep, kVerifyRollStep}) {
-        if (verifyAt(t, t.face.rollDegrees + d)) {
-            t.face.rollDegrees += 0.5f * d;
-            return true;
-        }
-    }
-    return false;
-}
-
-bool FaceTracker::Impl::verifyAt(Track& t, float roll) noexcept
-{
-    const float side = t.face.size * kVerifyContext;
-    if (!warpUpright(grays[current].view(), t.face.centre, roll, side, patch.view()))
-        return false;
-    const bool reanchor =
-        options.reanchorEvery > 0 && t.verifiedSinceAnchor + 1 >= options.reanchorEvery;
-    if (!reanchor) {
-        Rect hit;
-        const bool ok = verify.detectFirst(patch.view(), hit);
-        windows += verify.windowsEvaluated();
-        if (ok)
-            ++t.verifiedSinceAnchor;
-        return ok;
-    }
-    // Grouped scan of the patch: the best group near the patch centre re-centres and re-sizes
-    // the track (first hits say only "a face is here", not where exactly).
-    const int n = verify.detect(patch.view());
-    windows += verify.windowsEvaluated();
-    if (n <= 0)
-        return false;
-    const float half = static_cast<float>(options.verifyPatchSize) * 0.5f;
-    const float unit = side / static_cast<float>(options.verifyPatchSize);
-    const std::span<const Rect> boxes = verify.faces();
-    int best = -1;
-    float bestDistance = 1e9f;
-    for (int i = 0; i < n; ++i) {
-        const Rect& b = boxes[static_cast<std::size_t>(i)];
-        const float dx = static_cast<float>(b.x) + static_cast<float>(b.width) * 0.5f - half;
-        const float dy = static_cast<float>(b.y) + static_cast<float>(b.height) * 0.5f - half;
-        const float d = dx * dx + dy * dy;
-        if (d < bestDistance) {
-            bestDistance = d;
-            best = i;
-        }
-    }
-    const Rect& b = boxes[static_cast<std::size_t>(best)];
-    const float size = static_cast<float>(b.width) * unit;
-    if (size < t.face.size * 0.6f || size > t.face.size * 1.6f)
-        return true;  // a face is there, but this box is not a sensible measure of it
-    // Patch offset back to the image: rotate by the roll used for warping.
-    const float px = (static_cast<float>(b.x) + static_cast<float>(b.width) * 0.5f - half) * unit;
-    const float py = (static_cast<float>(b.y) + static_cast<float>(b.height) * 0.5f - half) * unit;
-    const float c = std::cos(roll / kRadToDeg);
-    const float s = std::sin(roll / kRadToDeg);
-    t.face.centre.x += 0.8f * (c * px - s * py);
-    t.face.centre.y += 0.8f * (s * px + c * py);
-    t.face.size += 0.8f * (size - t.face.size);
-    t.verifiedSinceAnchor = 0;
-    correctRoll(t);
-    return true;
-}
-
-float FaceTracker::Impl::initialRoll(Track& t, float rollHint) noexcept
-{
-    // Beyond 5.2: the dense symmetry of the face image, which holds on small faces whose corner
-    // sets are not symmetric; the corners' point symmetry (5.2) when it has no answer.
-    if (imageRoll) {
-        const RollEstimate r =
-            imageRoll->estimate(grays[current].view(), t.face.centre, t.face.size);
-        if (r.confidence >= kMinImageRollConfidence &&
-            (rollHint == 0.f || std::fabs(r.rollDegrees - rollHint) <= 20.f)) {
-            t.imageRollAtStart = r.rollDegrees;
-            t.haveImageRollAtStart = true;
-            return r.rollDegrees;
-        }
-    }
-    // A tilted scan's hit: the face is within the cascade's reach of the scan's angle.
-    if (rollHint != 0.f)
-        return rollHint;
-    const int n = std::min(t.pointCount, kMaxPoints);
-    for (int i = 0; i < n; ++i)
-        rollPoints[static_cast<std::size_t>(i)] = t.points[static_cast<std::size_t>(i)];
-    const RollEstimate r = estimateRollBySymmetry(
-        std::span<const Point2f>(rollPoints.data(), static_cast<std::size_t>(n)), t.face.centre,
-        t.face.size);
-    return r.confidence > 0.f ? r.rollDegrees : 0.f;
-}
-
-bool FaceTracker::Impl::turnedInImage(Track& t) noexcept
-{
-    // A face turning about its own centre (a head tilting from side to side) hardly moves its
-    // centre, so `path` misses it. Its tracked roll does turn, but corners near a face moving past
-    // a still one can turn that one's fit too (the edge of the passer-by uncovers and covers it):
-    // the turn counts only when the image's symmetry, measured afresh, turned the same way.
-    if (!imageRoll || !t.haveImageRollAtStart || options.mode == FaceTrackingMode::Translation)
-        return false;
-    if (std::fabs(t.turn) < std::fabs(t.rollChecked) + kTurnCheckDegrees)
-        return false;
-    t.rollChecked = t.turn;
-    const RollEstimate r = imageRoll->estimate(grays[current].view(), t.face.centre, t.face.size);
-    if (r.confidence < kMinImageRollConfidence)
-        return false;
-    const float seen = r.rollDegrees - t.imageRollAtStart;
-    return seen * t.turn > 0.f && std::fabs(seen) >= 0.5f * kTurnCheckDegrees;
-}
-
-void FaceTracker::Impl::correctRoll(Track& t) noexcept
-{
-    // Tracking accumulates small rotation errors (corners on hair and outline pull the fit
-    // towards no rotation): when a face is re-anchored, its roll is measured again from the
-    // image and the track moves halfway towards it.
-    if (!imageRoll || options.mode == FaceTrackingMode::Translation)
-        return;
-    const RollEstimate r = imageRoll->estimate(grays[current].view(), t.face.centre, t.face.size);
-    if (r.confidence < kMinImageRollConfidence ||
-        std::fabs(r.rollDegrees - t.face.rollDegrees) > 20.f)
-        return;
-    t.face.rollDegrees += 0.5f * (r.rollDegrees - t.face.rollDegrees);
-}
-
-void FaceTracker::Impl::startTrack(Rect box, float rollHint) noexcept
-{
-    if (trackCount >= options.maxFaces)
-        return;
-    Track& t = tracks[static_cast<std::size_t>(trackCount)];
-    t = Track{};
-    t.face.id = nextId++;
-    if (nextId <= 0)  // wrapped after 2^31 faces
-        nextId = 1;
-    t.face.centre = {static_cast<float>(box.x) + static_cast<float>(box.width) * 0.5f,
-                     static_cast<float>(box.y) + static_cast<float>(box.height) * 0.5f};
-    t.face.size = static_cast<float>(std::max(box.width, box.height));
-    t.face.hits = 1;
-    t.face.state = options.confirmFrames <= 1 ? FaceState::Confirmed : FaceState::Tentative;
-    t.face.confidence = 1.f / static_cast<float>(options.confirmFrames);
-    // A face found still is not shown until it moves; it is dropped if it never does.
-    // A tilted scan's hit must show motion of its own (see Track::tiltFound).
-    t.tiltFound = rollHint != 0.f;
-    t.lastMotionFrame = !t.tiltFound && motionFraction(box) >= options.minFaceMotionFraction
-                            ? frameIndex
-                            : frameIndex - options.confirmMotionFrames - 1;
-    if (t.face.state == FaceState::Confirmed && t.lastMotionFrame != frameIndex)
-        t.face.state = FaceState::Tentative;
-    t.detectedThisFrame = true;
-    if (options.mode != FaceTrackingMode::None)
-        findCorners(t, false);
-    if (options.initialRollBySymmetry && (options.mode == FaceTrackingMode::Similarity ||
-                                          options.mode == FaceTrackingMode::Affine)) {
-        t.face.rollDegrees = initialRoll(t, rollHint);
-    }
-    ++trackCount;
-}
-
-void FaceTracker::Impl::drop(int index) noexcept
-{
-    const Track& t = tracks[static_cast<std::size_t>(index)];
-    if (t.face.state != FaceState::Tentative) {
-        // Remember where a face was, so it is scanned for again even if it stands still.
-        RecentArea* slot = &recent[0];
-        for (RecentArea& a : recent)
-            if (a.expires < slot->expires)
-                slot = &a;
-        slot->box = t.face.box();
-        slot->expires = frameIndex + options.recentFaceFrames;
-    }
-    for (int i = index; i + 1 < trackCount; ++i)
-        tracks[static_cast<std::size_t>(i)] = tracks[static_cast<std::size_t>(i + 1)];
-    --trackCount;
-}
-
-bool FaceTracker::Impl::chooseTiltRegion() noexcept
-{
-    // The bounding box of the cells with motion (the scan mask's fraction) whose centre lies
-    // outside every tracked face's reach: where an untracked face may be.
-    const Size s = options.imageSize;
-    int x0 = s.width, y0 = s.height, x1 = 0, y1 = 0;
-    for (int cy = 0; cy < s.height; cy += kTiltCell) {
-        const int cy1 = std::min(cy + kTiltCell, s.height);
-        for (int cx = 0; cx < s.width; cx += kTiltCell) {
-            const int cx1 = std::min(cx + kTiltCell, s.width);
-            if (scanMaskIntegral.maskFraction({cx, cy, cx1 - cx, cy1 - cy}) < kTiltMinMaskFraction)
-                continue;
-            const float mx = 0.5f * static_cast<float>(cx + cx1);
-            const float my = 0.5f * static_cast<float>(cy + cy1);
-            bool tracked = false;
-            for (int i = 0; i < trackCount && !tracked; ++i) {
-                const TrackedFace& f = tracks[static_cast<std::size_t>(i)].face;
-                const float reach = 0.5f * kTrackMotionReach * f.size;
-                tracked = std::fabs(mx - f.centre.x) < reach && std::fabs(my - f.centre.y) < reach;
-            }
-            if (tracked)
-                continue;
-            x0 = std::min(x0, cx);
-            y0 = std::min(y0, cy);
-            x1 = std::max(x1, cx1);
-            y1 = std::max(y1, cy1);
-        }
-    }
-    const int window = std::max(scan.windowSize().width, scan.windowSize().height);
-    if (x1 - x0 < window / 2 || y1 - y0 < window / 2)
-        return false;  // nothing moving untracked of a face's size
-    // Margin: the detector's box reaches beyond the moving pixels of the face.
-    const float margin = 4.f + 0.15f * static_cast<float>(std::max(x1 - x0, y1 - y0));
-    const float bw = static_cast<float>(x1 - x0) + 2.f * margin;
-    const float bh = static_cast<float>(y1 - y0) + 2.f * margin;
-    tiltAngle = nextTiltSign * options.tiltScanDegrees;
-    nextTiltSign = -nextTiltSign;
-    const float c = std::fabs(std::cos(tiltAngle * kDegToRad));
-    const float n = std::fabs(std::sin(tiltAngle * kDegToRad));
-    const Size canvas = tiltGray.view().size();
-    tiltSize = {std::min(canvas.width, static_cast<int>(bw * c + bh * n + 0.5f)),
-                std::min(canvas.height, static_cast<int>(bw * n + bh * c + 0.5f))};
-    if (tiltSize.width < window || tiltSize.height < window)
-        return false;
-    tiltCentre = {0.5f * static_cast<float>(x0 + x1), 0.5f * static_cast<float>(y0 + y1)};
-    return true;
-}
-
-long FaceTracker::Impl::tiltScanStep(long budget) noexcept
-{
-    // A face rolled by the scan's angle comes out upright in the turned region (warpRotated:
-    // region offset (u, v) from its centre shows the image at tiltCentre + R(angle) (u, v)).
-    if (!tiltActive) {
-        tiltActive = chooseTiltRegion();
-        if (!tiltActive) {
-            if (!tiltDone)
-                tiltCount = 0;  // nothing untracked moves: no tilted detections to report
-            return 0;
-        }
-    }
-    ImageView region = tiltGray.view();
-    region.width = tiltSize.width;
-    region.height = tiltSize.height;
-    warpRotated(grays[current].view(), tiltCentre, tiltAngle, 1.f, 1.f, region);
-    warpRotated(scanMask.view(), tiltCentre, tiltAngle,
-                static_cast<float>(tiltSize.width) / kTiltMaskSide,
-                static_cast<float>(tiltSize.height) / kTiltMaskSide, tiltMask.view());
-    tiltMaskIntegral.compute(tiltMask.view());
-    // Tracked faces are excluded as in the upright scan: their boxes about their centres as
-    // seen in the turned region.
-    const float c = std::cos(tiltAngle * kDegToRad);
-    const float n = std::sin(tiltAngle * kDegToRad);
-    const float hw = 0.5f * static_cast<float>(tiltSize.width);
-    const float hh = 0.5f * static_cast<float>(tiltSize.height);
-    int excludedCount = 0;
-    if (options.mode != FaceTrackingMode::None) {
-        for (int i = 0; i < trackCount; ++i) {
-            const TrackedFace& f = tracks[static_cast<std::size_t>(i)].face;
-            const float dx = f.centre.x - tiltCentre.x;
-            const float dy = f.centre.y - tiltCentre.y;
-            const float u = c * dx + n * dy + hw;
-            const float v = -n * dx + c * dy + hh;
-            const float half = 0.5f * f.size;
-            tiltExcluded[static_cast<std::size_t>(excludedCount++)] = {
-                static_cast<int>(u - half), static_cast<int>(v - half),
-                static_cast<int>(f.size + 0.5f), static_cast<int>(f.size + 0.5f)};
-        }
-    }
-    const bool done = tiltScan->detectMaskedIncremental(
-        region, &tiltMaskIntegral, std::max(options.minMaskFraction, kTiltMinMaskFraction),
-        std::span<const Rect>(tiltExcluded.data(), static_cast<std::size_t>(excludedCount)),
-        budget);
-    const long used = tiltScan->windowsEvaluated();
-    windows += used;
-    if (!done)
-        return used;
-    tiltActive = false;
-    if (!tiltDone)
-        tiltCount = 0;  // the first tilted scan completed this frame replaces the last ones
-    tiltDone = true;
-    const Size s = options.imageSize;
-    for (const Rect& b : tiltScan->faces()) {
-        if (tiltCount >= static_cast<int>(tiltHits.size()))
-            break;
-        const float u = static_cast<float>(b.x) + 0.5f * static_cast<float>(b.width) - hw;
-        const float v = static_cast<float>(b.y) + 0.5f * static_cast<float>(b.height) - hh;
-        const float x = tiltCentre.x + c * u - n * v;
-        const float y = tiltCentre.y + n * u + c * v;
-        // Only faces wholly in view: the turned region repeats the image's border pixels, and
-        // the upright scan finds a face entering at an edge once it is in (its box and roll
-        // from a part of a face are poor anyway).
-        const int side = std::max(b.width, b.height);
-        const float half = 0.5f * static_cast<float>(side);
-        if (x - half < 0.f || y - half < 0.f || x + half > static_cast<float>(s.width) ||
-            y + half > static_cast<float>(s.height))
-            continue;
-        tiltHitRolls[static_cast<std::size_t>(tiltCount)] = tiltAngle;
-        tiltHits[static_cast<std::size_t>(tiltCount++)] = {
-            static_cast<int>(x - half + 0.5f), static_cast<int>(y - half + 0.5f), side, side};
-    }
-    return used;
-}
-
 bool FaceTracker::Impl::process(const ConstImageView& gray, const ConstImageView& mask,
                                 const IntegralImage* maskIntegral) noexcept
+{
+    if (!accept(gray, mask))
+        return false;
+    beginFrame(gray, mask, maskIntegral);
+    updateFacePoses();         // 1. tracks follow their corners
+    detectInSearchMask(mask);  // 2. detection where there is motion and no track is
+    keepOrAddDetected();       // 3. a detection keeps the track it overlaps, or adds one
+    verifyUndetected();        // 4. the other tracks, warped upright, are scanned again
+    confirmOrDiscard();        // 5. n in a row to be shown, m misses to be dropped
+    publish();
+    return true;
+}
+
+bool FaceTracker::Impl::accept(const ConstImageView& gray, const ConstImageView& mask) noexcept
 {
     const Size s = options.imageSize;
     if (gray.format != PixelFormat::Gray8 || gray.width != s.width || gray.height != s.height ||
@@ -792,35 +195,44 @@ bool FaceTracker::Impl::process(const ConstImageView& gray, const ConstImageView
         return false;
     }
     error[0] = '\0';
+    return true;
+}
+
+void FaceTracker::Impl::beginFrame(const ConstImageView& gray, const ConstImageView& mask,
+                                   const IntegralImage* maskIntegral) noexcept
+{
+    const Size s = options.imageSize;
     ++frameIndex;
     windows = 0;
-    scanDone = false;
-
-    // This frame's grey copy (the caller's buffer changes under us) and pyramid.
-    current = 1 - current;
-    for (int y = 0; y < s.height; ++y)
-        std::memcpy(grays[current].view().row(y), gray.row(y), static_cast<std::size_t>(s.width));
-    pyramids[current].build(grays[current].view());
-    haveMotion = maskGiven && options.useMotionMask;
-    motion = &motionIntegral;
-    if (haveMotion) {
+    cornerFlow.newFrame(gray);
+    motion = nullptr;
+    if (mask.data != nullptr && mask.width > 0 && options.useMotionMask) {
+        motion = &motionIntegral;
         if (maskIntegral != nullptr && maskIntegral->size() == s)
             motion = maskIntegral;
         else
             motionIntegral.compute(mask);
     }
+    staticRule.beginFrame(image(), motion, frameIndex);
+}
 
-    // 1. Existing tracks follow their corners.
+void FaceTracker::Impl::updateFacePoses() noexcept
+{
     for (int i = 0; i < trackCount; ++i) {
         Track& t = tracks[static_cast<std::size_t>(i)];
         t.detectedThisFrame = false;
         t.heldByCorners = false;
         ++t.face.age;
-        if (options.mode != FaceTrackingMode::None && havePrevious)
-            trackPoints(t);
+        if (options.mode != FaceTrackingMode::None && cornerFlow.hasPrevious())
+            cornerFlow.follow(t, staticRule);
     }
-    havePrevious = true;
+    dropLostTracks();
+}
+
+void FaceTracker::Impl::dropLostTracks() noexcept
+{
     // Tracks that left the image or merged into another face end here.
+    const Size s = options.imageSize;
     for (int i = 0; i < trackCount;) {
         const TrackedFace& f = tracks[static_cast<std::size_t>(i)].face;
         const bool outside = f.centre.x < 0.f || f.centre.y < 0.f ||
@@ -834,200 +246,204 @@ bool FaceTracker::Impl::process(const ConstImageView& gray, const ConstImageView
         else
             ++i;
     }
+}
 
-    // 2. Detection where there is motion (or a face was recently) and no track is.
-    int excludedCount = 0;
-    if (options.mode != FaceTrackingMode::None)
-        for (int i = 0; i < trackCount; ++i)
-            excluded[static_cast<std::size_t>(excludedCount++)] =
-                tracks[static_cast<std::size_t>(i)].face.box();
-    const std::span<const Rect> exclude(excluded.data(), static_cast<std::size_t>(excludedCount));
-    int detected = 0;
-    if (coldStart && haveMotion && motion->sum(0, 0, s.width, s.height) > 0)
-        coldStart = false;
-    const bool cold = coldStart;
-    if (haveMotion)
-        prepareScanMask(mask);
-    // A cold start's scan is not spread over frames: the faces in view when the mirror starts
-    // (or its camera comes back) are all found in that one frame, which may take longer.
-    const long budget = cold ? 0 : options.detectionWindowBudget;
-    if (options.detectionWindowBudget > 0) {
-        // The scan spread over frames: faces() holds a result only when a scan completes.
-        scanDone = scan.detectMaskedIncremental(grays[current].view(),
-                                                haveMotion ? &scanMaskIntegral : nullptr,
-                                                options.minMaskFraction, exclude, budget);
-        detected = scanDone ? static_cast<int>(scan.faces().size()) : 0;
-    } else if (haveMotion) {
-        detected = scan.detectMasked(grays[current].view(), scanMaskIntegral,
-                                     options.minMaskFraction, exclude);
-        scanDone = true;
-    } else if (excludedCount > 0) {
-        // No mask: everything scannable, but tracked faces still excluded (a minimum fraction
-        // of 0 accepts every window of the all-zero mask table).
-        detected = scan.detectMasked(grays[current].view(), scanMaskIntegral, 0.f, exclude);
-        scanDone = true;
-    } else {
-        detected = scan.detect(grays[current].view());
-        scanDone = true;
-    }
-    windows += scan.windowsEvaluated();
-    if (scanDone) {
-        coldStart = false;
-        uprightCount = std::min(detected, static_cast<int>(uprightHits.size()));
-        for (int d = 0; d < uprightCount; ++d)
-            uprightHits[static_cast<std::size_t>(d)] = scan.faces()[static_cast<std::size_t>(d)];
-    }
-    // Tilted scans of the moving regions no track covers, with what the budget left.
-    tiltDone = false;
-    if (tiltScan && haveMotion && options.mode != FaceTrackingMode::None) {
-        // A cold start's tilted scans cover the whole image once, as its upright scan does, in
-        // its frame.
-        long left = options.tiltWindowBudget > 0 && !cold ? options.tiltWindowBudget
-                                                          : std::numeric_limits<long>::max();
-        if (budget > 0)
-            left = std::min(left, budget - scan.windowsEvaluated());
-        // One angle after the other while the budget lasts (both in a frame when it allows).
-        for (int k = 0; k < 2 && left > 0; ++k) {
-            const bool unlimited = left == std::numeric_limits<long>::max();
-            const long used = tiltScanStep(unlimited ? 0 : left);
-            if (tiltActive || used == 0)
-                break;  // the scan continues next frame, or there was nothing to scan
-            if (!unlimited)
-                left -= used;
-        }
-    }
+void FaceTracker::Impl::detectInSearchMask(const ConstImageView& mask) noexcept
+{
+    windows += search.scan({image(), mask, motion, live(), frameIndex});
+    // Beyond fig. 89: the moving regions no track covers, turned, with what the budget left.
+    windows += tilted.run({image(), search.mask(), search.maskIntegral(), live()}, tiltBudget());
+    collectDetections();
+}
+
+long FaceTracker::Impl::tiltBudget() const noexcept
+{
+    if (motion == nullptr || options.mode == FaceTrackingMode::None)
+        return 0;
+    // A cold start's tilted scans cover the whole image once, as its upright scan does, in its
+    // frame.
+    const long own = options.tiltWindowBudget > 0 && !search.wasCold() ? options.tiltWindowBudget
+                                                                       : TiltedScan::kUnlimited;
+    return std::min(own, search.windowsLeft());
+}
+
+void FaceTracker::Impl::collectDetections() noexcept
+{
     detectionCount = 0;
-    for (int d = 0; d < uprightCount; ++d)
-        outDetections[static_cast<std::size_t>(detectionCount++)] =
-            uprightHits[static_cast<std::size_t>(d)];
-    for (int d = 0; d < tiltCount; ++d)
-        outDetections[static_cast<std::size_t>(detectionCount++)] =
-            tiltHits[static_cast<std::size_t>(d)];
+    for (const Rect& b : search.hits())
+        outDetections[static_cast<std::size_t>(detectionCount++)] = b;
+    for (const Rect& b : tilted.hits())
+        outDetections[static_cast<std::size_t>(detectionCount++)] = b;
+}
 
-    // 3. Detections (of the scans completed this frame) confirm the tracks they overlap; the
-    // others start new tracks, a tilted scan's with its angle as the first guess of the roll.
-    const int newUpright = scanDone ? uprightCount : 0;
-    const int newTilted = tiltDone ? tiltCount : 0;
-    for (int d = 0; d < newUpright + newTilted; ++d) {
-        const bool tilted = d >= newUpright;
-        const Rect box = tilted ? tiltHits[static_cast<std::size_t>(d - newUpright)]
-                                : uprightHits[static_cast<std::size_t>(d)];
-        int best = -1;
-        float bestIou = options.matchIou;
-        for (int i = 0; i < trackCount; ++i) {
-            const float v = iou(tracks[static_cast<std::size_t>(i)].face.box(), box);
-            if (v >= bestIou) {
-                bestIou = v;
-                best = i;
-            }
+void FaceTracker::Impl::keepOrAddDetected() noexcept
+{
+    // Detections of the scans completed this frame; a tilted scan's carry its angle as the
+    // first guess of the roll.
+    if (search.completed())
+        for (const Rect& box : search.hits())
+            match(box, 0.f);
+    if (tilted.completed())
+        for (std::size_t d = 0; d < tilted.hits().size(); ++d)
+            match(tilted.hits()[d], tilted.hitRolls()[d]);
+}
+
+void FaceTracker::Impl::match(Rect box, float rollHint) noexcept
+{
+    int best = -1;
+    float bestIou = options.matchIou;
+    for (int i = 0; i < trackCount; ++i) {
+        const float v = iou(tracks[static_cast<std::size_t>(i)].face.box(), box);
+        if (v >= bestIou) {
+            bestIou = v;
+            best = i;
         }
-        if (best < 0) {
-            // A box around a tracked face's centre is that face with its surroundings (a
-            // grouping of windows over two heads), not a new face: faces do not overlap so.
-            bool holdsTrack = false;
-            for (int i = 0; i < trackCount && !holdsTrack; ++i) {
-                const Point2f c = tracks[static_cast<std::size_t>(i)].face.centre;
-                holdsTrack = c.x >= static_cast<float>(box.x) && c.y >= static_cast<float>(box.y) &&
-                             c.x < static_cast<float>(box.x + box.width) &&
-                             c.y < static_cast<float>(box.y + box.height);
-            }
-            if (!holdsTrack)
-                startTrack(box,
-                           tilted ? tiltHitRolls[static_cast<std::size_t>(d - newUpright)] : 0.f);
-            continue;
-        }
-        Track& t = tracks[static_cast<std::size_t>(best)];
-        if (t.detectedThisFrame)
-            continue;
-        t.detectedThisFrame = true;
-        // A detection re-anchors position and size (tracking drifts, detections do not).
-        t.face.centre = {static_cast<float>(box.x) + static_cast<float>(box.width) * 0.5f,
-                         static_cast<float>(box.y) + static_cast<float>(box.height) * 0.5f};
-        t.face.size = static_cast<float>(std::max(box.width, box.height));
-        if (options.mode != FaceTrackingMode::None && t.pointCount < options.minCornersPerFace)
-            findCorners(t, true);
     }
+    if (best < 0) {
+        // A box around a tracked face's centre is that face with its surroundings (a grouping
+        // of windows over two heads), not a new face: faces do not overlap so.
+        bool holdsTrack = false;
+        for (int i = 0; i < trackCount && !holdsTrack; ++i) {
+            const Point2f c = tracks[static_cast<std::size_t>(i)].face.centre;
+            holdsTrack = c.x >= static_cast<float>(box.x) && c.y >= static_cast<float>(box.y) &&
+                         c.x < static_cast<float>(box.x + box.width) &&
+                         c.y < static_cast<float>(box.y + box.height);
+        }
+        if (!holdsTrack)
+            startTrack(box, rollHint);
+        return;
+    }
+    Track& t = tracks[static_cast<std::size_t>(best)];
+    if (t.detectedThisFrame)
+        return;
+    t.detectedThisFrame = true;
+    // A detection re-anchors position and size (tracking drifts, detections do not).
+    t.face.centre = centreOf(box);
+    t.face.size = static_cast<float>(std::max(box.width, box.height));
+    if (options.mode != FaceTrackingMode::None && t.pointCount < options.minCornersPerFace)
+        cornerFlow.find(t, true);
+}
 
-    // 4. Tracks without a detection are verified; 5. confirmation and grace.
-    for (int i = 0; i < trackCount;) {
+void FaceTracker::Impl::startTrack(Rect box, float rollHint) noexcept
+{
+    if (trackCount >= options.maxFaces)
+        return;
+    Track& t = tracks[static_cast<std::size_t>(trackCount)];
+    t = Track{};
+    t.face.id = nextId++;
+    if (nextId <= 0)  // wrapped after 2^31 faces
+        nextId = 1;
+    t.face.centre = centreOf(box);
+    t.face.size = static_cast<float>(std::max(box.width, box.height));
+    t.face.hits = 1;
+    t.face.state = options.confirmFrames <= 1 ? FaceState::Confirmed : FaceState::Tentative;
+    t.face.confidence = 1.f / static_cast<float>(options.confirmFrames);
+    // A face found still is not shown until it moves; it is dropped if it never does.
+    const bool moving = staticRule.start(t.motion, box, rollHint != 0.f);
+    if (t.face.state == FaceState::Confirmed && !moving)
+        t.face.state = FaceState::Tentative;
+    t.detectedThisFrame = true;
+    if (options.mode != FaceTrackingMode::None)
+        cornerFlow.find(t, false);
+    if (options.initialRollBySymmetry && (options.mode == FaceTrackingMode::Similarity ||
+                                          options.mode == FaceTrackingMode::Affine)) {
+        t.face.rollDegrees = initialRoll(t, rollHint);
+    }
+    ++trackCount;
+}
+
+float FaceTracker::Impl::initialRoll(Track& t, float rollHint) noexcept
+{
+    // Beyond 5.2: the dense symmetry of the face image, which holds on small faces whose corner
+    // sets are not symmetric; the corners' point symmetry (§4, 5.2) when it has no answer.
+    if (imageRoll) {
+        const RollEstimate r = imageRoll->estimate(image(), t.face.centre, t.face.size);
+        if (r.confidence >= kMinImageRollConfidence &&
+            (rollHint == 0.f || std::fabs(r.rollDegrees - rollHint) <= 20.f)) {
+            t.motion.imageRollAtStart = r.rollDegrees;
+            t.motion.haveImageRollAtStart = true;
+            return r.rollDegrees;
+        }
+    }
+    // A tilted scan's hit: the face is within the cascade's reach of the scan's angle.
+    if (rollHint != 0.f)
+        return rollHint;
+    const int n = std::min(t.pointCount, kMaxPoints);
+    for (int i = 0; i < n; ++i)
+        rollPoints[static_cast<std::size_t>(i)] = t.points[static_cast<std::size_t>(i)];
+    const RollEstimate r = estimateRollBySymmetry(
+        std::span<const Point2f>(rollPoints.data(), static_cast<std::size_t>(n)), t.face.centre,
+        t.face.size);
+    return r.confidence > 0.f ? r.rollDegrees : 0.f;
+}
+
+void FaceTracker::Impl::verifyUndetected() noexcept
+{
+    for (int i = 0; i < trackCount; ++i) {
         Track& t = tracks[static_cast<std::size_t>(i)];
-        bool seen = t.detectedThisFrame;
-        const bool isNew = t.face.age == 0;
-        if (!seen && options.mode != FaceTrackingMode::None)
-            seen = verifyTrack(t);
-        if (!isNew) {
-            if (seen) {
-                ++t.face.hits;
-                t.face.misses = 0;
-            } else {
-                t.face.hits = 0;
-                ++t.face.misses;
-            }
-        }
-        // Static regions are ignored: a face shows it is a person by moving, i.e. its centre
-        // leaving the place it last moved from by a few percent of its size (a photo on the wall
-        // stays put, whatever the light does to the motion mask), or by a box full of motion.
-        // Detector only: the first frames of a track settle its box (detections move it a few
-        // pixels): they are no evidence either way. Tracking measures the motion of the face's
-        // corners, which re-anchoring does not add to, so it counts from the first frame.
-        if (options.mode == FaceTrackingMode::None) {
-            // Detections jitter by a pixel or so from frame to frame.
-            const float jump =
-                std::hypot(t.face.centre.x - t.lastCentre.x, t.face.centre.y - t.lastCentre.y);
-            if (t.face.age > 0 && jump > 1.5f)
-                t.path += jump;
-            t.lastCentre = t.face.centre;
-        }
-        if (options.mode == FaceTrackingMode::None && t.face.age < kSettleFrames)
-            t.anchor = t.path;
-        const float step = std::max(1.0f, options.minFaceMoveFraction * t.face.size);
-        const bool maskCounts = !(t.tiltFound && t.face.state == FaceState::Tentative);
-        if (t.path - t.anchor > step ||
-            (maskCounts && motionFraction(t.face.box()) >= options.minFaceMotionFraction) ||
-            (haveMotion && t.face.state == FaceState::Tentative && seen && turnedInImage(t))) {
-            t.lastMotionFrame = frameIndex;
-            t.anchor = t.path;
-        }
-        const bool moved =
-            !haveMotion || frameIndex - t.lastMotionFrame <= options.staticDropFrames;
-        const bool movedLately =
-            !haveMotion || frameIndex - t.lastMotionFrame <= options.confirmMotionFrames;
-        bool keep = true;
-        if (t.face.state == FaceState::Tentative) {
-            if (!seen)
-                keep = false;  // a face not yet shown gets no grace: phantoms die at once
-            else if (t.face.hits >= options.confirmFrames && movedLately)
-                t.face.state = FaceState::Confirmed;
-        } else if (seen) {
-            t.face.state = FaceState::Confirmed;
-        } else if (t.face.misses > options.graceFrames &&
-                   (!t.heldByCorners || t.face.misses > options.occludedGraceFrames)) {
-            keep = false;
-        } else {
-            t.face.state = FaceState::Missing;
-        }
-        // A face found still (a photo on the wall, detected while someone moved nearby) is
-        // never shown and is let go; a shown face that stops moving stays until it has been
-        // still for a long time (a person may stand still in front of a mirror).
-        if (t.face.state == FaceState::Tentative && !movedLately &&
-            t.face.age > 2 * options.confirmMotionFrames)
-            keep = false;
-        if (!moved)
-            keep = false;
-        if (keep && options.mode != FaceTrackingMode::None && seen &&
-            t.pointCount < options.minCornersPerFace)
-            findCorners(t, true);
-        // Confidence: recent detection record, scaled by the corners that survived the flow.
-        const float record = std::min(
-            1.f, static_cast<float>(t.face.hits) / static_cast<float>(options.confirmFrames));
-        t.face.confidence = seen ? std::max(record * t.face.confidence, record * 0.5f) : 0.f;
-        if (keep)
+        t.seen = t.detectedThisFrame;
+        if (!t.seen && options.mode != FaceTrackingMode::None)
+            t.seen = verifier.verify(image(), t, windows);
+    }
+}
+
+void FaceTracker::Impl::confirmOrDiscard() noexcept
+{
+    for (int i = 0; i < trackCount;) {
+        if (keeps(tracks[static_cast<std::size_t>(i)]))
             ++i;
         else
             drop(i);
     }
-    publish();
-    return true;
+}
+
+bool FaceTracker::Impl::keeps(Track& t) noexcept
+{
+    const bool seen = t.seen;
+    if (t.face.age > 0) {  // a new track's detection is its first hit already
+        if (seen) {
+            ++t.face.hits;
+            t.face.misses = 0;
+        } else {
+            t.face.hits = 0;
+            ++t.face.misses;
+        }
+    }
+    const StaticFaceRule::Verdict still = staticRule.observe(t.motion, t.face, seen);
+    bool keep = true;
+    if (t.face.state == FaceState::Tentative) {
+        if (!seen)
+            keep = false;  // a face not yet shown gets no grace: phantoms die at once
+        else if (t.face.hits >= options.confirmFrames && still.movedLately)
+            t.face.state = FaceState::Confirmed;
+    } else if (seen) {
+        t.face.state = FaceState::Confirmed;
+    } else if (t.face.misses > options.graceFrames &&
+               (!t.heldByCorners || t.face.misses > options.occludedGraceFrames)) {
+        keep = false;
+    } else {
+        t.face.state = FaceState::Missing;
+    }
+    keep = staticRule.keeps(still, t.face) && keep;
+    if (keep && options.mode != FaceTrackingMode::None && seen &&
+        t.pointCount < options.minCornersPerFace)
+        cornerFlow.find(t, true);
+    // Confidence: recent detection record, scaled by the corners that survived the flow.
+    const float record = std::min(
+        1.f, static_cast<float>(t.face.hits) / static_cast<float>(options.confirmFrames));
+    t.face.confidence = seen ? std::max(record * t.face.confidence, record * 0.5f) : 0.f;
+    return keep;
+}
+
+void FaceTracker::Impl::drop(int index) noexcept
+{
+    const Track& t = tracks[static_cast<std::size_t>(index)];
+    // Remember where a face was, so it is scanned for again even if it stands still.
+    if (t.face.state != FaceState::Tentative)
+        search.remember(t.face.box(), frameIndex);
+    for (int i = index; i + 1 < trackCount; ++i)
+        tracks[static_cast<std::size_t>(i)] = tracks[static_cast<std::size_t>(i + 1)];
+    --trackCount;
 }
 
 void FaceTracker::Impl::publish() noexcept
@@ -1074,7 +490,7 @@ std::span<const Rect> FaceTracker::detections() const noexcept
 
 bool FaceTracker::scanCompleted() const noexcept
 {
-    return impl_->scanDone;
+    return impl_->search.completed();
 }
 long FaceTracker::windowsEvaluated() const noexcept
 {
@@ -1084,16 +500,10 @@ long FaceTracker::windowsEvaluated() const noexcept
 void FaceTracker::reset() noexcept
 {
     impl_->trackCount = 0;
-    impl_->havePrevious = false;
+    impl_->cornerFlow.reset();
     impl_->detectionCount = 0;
-    impl_->uprightCount = 0;
-    impl_->tiltCount = 0;
-    impl_->tiltActive = false;
-    if (impl_->tiltScan)
-        impl_->tiltScan->resetIncremental();
-    impl_->scan.resetIncremental();
-    impl_->recent.fill(RecentArea{});
-    impl_->coldStart = true;
+    impl_->tilted.reset();
+    impl_->search.reset();
 }
 
 const FaceTrackerOptions& FaceTracker::options() const noexcept

@@ -2,25 +2,15 @@
 // FaceTracker: detection and tracking of every face, integrated as in the dissertation's fig. 89
 // (METHOD.md §3, "Integration"), with the initial roll by point symmetry (§4).
 //
-// Each frame, on a grey image at the working resolution (the motion stage's, e.g. 360x240):
-//  1. every live track moves by the motion model fitted to its corners, tracked by pyramidal
-//     Lucas-Kanade with a forward-backward check (translation / similarity / affine, RANSAC);
-//     corners are replenished inside the box when too few survive;
-//  2. the detector scans where there is motion (or a face was seen recently) and no track is,
-//     within a per-frame window budget (a scan may take several frames); the moving regions no
-//     track covers are also scanned turned by +-tiltScanDegrees, for faces that enter tilted
-//     beyond the upright cascade's reach. The first frame (after construction or reset(),
-//     before the motion mask marks anything) is scanned whole, upright and turned, whatever the
-//     budget: the faces in view at start are all found at once, and step 5 sorts them;
-//  3. a track overlapping a detection is confirmed by it; a detection overlapping no track starts a
-//     new track (initial roll by symmetry, near a tilted scan's angle for its hits), unless its
-//     box holds a tracked face's centre (a grouping over two heads);
-//  4. a track without a detection is verified by warping its face upright by its roll into a small
-//     patch and running first-hit detection there (again at the roll +-12 degrees if that fails:
-//     the tracked roll drifts); a failed verification is a miss;
-//  5. a track becomes Confirmed (shown) after `confirmFrames` detections or verifications in a
-//     row, and is dropped after `graceFrames` misses in a row (`occludedGraceFrames` while its
-//     corners still hold it).
+// Give process() each frame's grey image at the working resolution (the motion stage's, e.g.
+// 360x240) and its motion mask; faces() are then the tracked faces. Per frame, the five steps of
+// fig. 89: 1. every track moves by the flow of its corners; 2. the detector scans where there is
+// motion (or a face was seen recently) and no track is, upright and, for faces that come in
+// tilted, turned by +-tiltScanDegrees, within a window budget (the first frame after construction
+// or reset() is scanned whole); 3. a detection keeps the track it overlaps or starts a new one;
+// 4. a track without one is verified on its face warped upright by its roll; 5. a face is shown
+// after confirmFrames detections or verifications in a row and dropped after graceFrames misses
+// in a row (occludedGraceFrames while its corners still hold it), or when it never moves.
 // Ids are stable for the life of a track and never reused while the tracker lives.
 // Everything is allocated by the constructor; process() never allocates and never throws.
 #include "vision/face_detector.hpp"
@@ -110,17 +100,13 @@ struct FaceTrackerOptions {
     /// Roll from the dense symmetry of the face image (RollByImageSymmetry) for new faces and,
     /// at each re-anchoring, to correct the tracked roll; false: corner point symmetry only.
     bool rollByImageSymmetry = true;
-    /// Static regions are ignored (the dissertation's motion rule; with a motion mask only): a
-    /// face shows it moves when its centre leaves the place it last moved from by
-    /// minFaceMoveFraction of its size (at least 1 px; only flow steps that moved nearly all of
-    /// its corners count), or when this fraction of the inner half of its box is foreground, or
-    /// (not yet shown) when it turned in place by a few degrees and its image's symmetry agrees.
-    /// A photo on the wall beside a moving person does none of these (its mask fraction stays
-    /// at a few percent, but lighting changes can raise it, hence the high threshold; the
-    /// passer-by drags only the corners nearest to it). A Tentative track is confirmed only if it
-    /// moved within the last confirmMotionFrames frames (and a Tentative one that has not, after
-    /// twice that, is dropped), and a shown track that has not moved for staticDropFrames frames is
-    /// dropped (a photo that slipped through; a person standing still keeps their hat much longer).
+    /// Faces that never move are dropped (posters, photos; with a motion mask only): a face
+    /// moves when its centre leaves the place it last moved from by minFaceMoveFraction of its
+    /// size (at least 1 px), when minFaceMotionFraction of the inner half of its box is
+    /// foreground, or (not yet shown) when it turns in place and its image agrees. A Tentative
+    /// face is confirmed only if it moved within the last confirmMotionFrames frames (and is
+    /// dropped if it has not after twice that); a shown face still for staticDropFrames frames
+    /// is dropped.
     float minFaceMoveFraction = 0.015f;
     float minFaceMotionFraction = 0.6f;
     int confirmMotionFrames = 30;

@@ -1,0 +1,142 @@
+#include "track_verifier.hpp"
+
+#include "vision/upright_patch.hpp"
+
+#include <cmath>
+#include <span>
+
+namespace vision {
+
+namespace {
+
+/// The verification patch shows the face box enlarged by this factor: the detector's window
+/// must fit around the face at a few scales.
+constexpr float kVerifyContext = 1.6f;
+/// Verification retries this far either side of the tracked roll (the upright cascade finds
+/// faces within about +-15 degrees).
+constexpr float kVerifyRollStep = 12.f;
+
+FaceDetectorOptions verifyOptions(const FaceTrackerOptions& o, Size window)
+{
+    // The face fills about 1 / kVerifyContext of the patch; scan from the smallest window up to
+    // the whole patch with the scan's scale factor.
+    FaceDetectorOptions d;
+    d.maxFrameSize = {o.verifyPatchSize, o.verifyPatchSize};
+    d.scaleFactor = o.detector.scaleFactor;
+    d.minNeighbors = 1;
+    d.minSize = window;
+    d.maxSize = {o.verifyPatchSize, o.verifyPatchSize};
+    d.maxRawHits = 1024;
+    d.maxFaces = 16;
+    return d;
+}
+
+}  // namespace
+
+TrackVerifier::TrackVerifier(const HaarCascade& cascade, const FaceTrackerOptions& options,
+                             RollByImageSymmetry* imageRoll)
+    : options_(options),
+      detector_(cascade, verifyOptions(options, {cascade.windowWidth, cascade.windowHeight})),
+      patch_(options.verifyPatchSize, options.verifyPatchSize, PixelFormat::Gray8),
+      imageRoll_(imageRoll)
+{
+}
+
+bool TrackVerifier::verify(const ConstImageView& gray, Track& t, long& windows) noexcept
+{
+    // Fig. 89: a track with no detection is verified by warping its face upright by the tracked
+    // roll into a small patch and running first-hit detection on it.
+    if (options_.mode == FaceTrackingMode::Translation)
+        return verifyAt(gray, t, 0.f, windows);
+    if (verifyAt(gray, t, t.face.rollDegrees, windows))
+        return true;
+    // The tracked roll drifts (corners on hair and outline): a shown face the cascade no longer
+    // finds at it is tried once either side, within the cascade's reach, and the roll moves
+    // towards where it was found. Not a Tentative one: those get no grace (a still photo that
+    // lingers as a track would in time be confirmed by the light changing on it).
+    if (t.face.state == FaceState::Tentative)
+        return false;
+    for (const float d : {-kVerifyRollStep, kVerifyRollStep}) {
+        if (verifyAt(gray, t, t.face.rollDegrees + d, windows)) {
+            t.face.rollDegrees += 0.5f * d;
+            return true;
+        }
+    }
+    return false;
+}
+
+bool TrackVerifier::verifyAt(const ConstImageView& gray, Track& t, float roll,
+                             long& windows) noexcept
+{
+    const float side = t.face.size * kVerifyContext;
+    if (!warpUpright(gray, t.face.centre, roll, side, patch_.view()))
+        return false;
+    const bool reanchoring =
+        options_.reanchorEvery > 0 && t.verifiedSinceAnchor + 1 >= options_.reanchorEvery;
+    if (!reanchoring) {
+        Rect hit;
+        const bool ok = detector_.detectFirst(patch_.view(), hit);
+        windows += detector_.windowsEvaluated();
+        if (ok)
+            ++t.verifiedSinceAnchor;
+        return ok;
+    }
+    // Grouped scan of the patch: the best group near the patch centre re-centres and re-sizes
+    // the track (first hits say only "a face is here", not where exactly).
+    const int n = detector_.detect(patch_.view());
+    windows += detector_.windowsEvaluated();
+    if (n <= 0)
+        return false;
+    const float half = static_cast<float>(options_.verifyPatchSize) * 0.5f;
+    const std::span<const Rect> boxes = detector_.faces();
+    int best = -1;
+    float bestDistance = 1e9f;
+    for (int i = 0; i < n; ++i) {
+        const Rect& b = boxes[static_cast<std::size_t>(i)];
+        const float dx = static_cast<float>(b.x) + static_cast<float>(b.width) * 0.5f - half;
+        const float dy = static_cast<float>(b.y) + static_cast<float>(b.height) * 0.5f - half;
+        const float d = dx * dx + dy * dy;
+        if (d < bestDistance) {
+            bestDistance = d;
+            best = i;
+        }
+    }
+    reanchor(gray, t, boxes[static_cast<std::size_t>(best)], roll, side);
+    return true;
+}
+
+void TrackVerifier::reanchor(const ConstImageView& gray, Track& t, const Rect& b, float roll,
+                             float side) noexcept
+{
+    const float half = static_cast<float>(options_.verifyPatchSize) * 0.5f;
+    const float unit = side / static_cast<float>(options_.verifyPatchSize);
+    const float size = static_cast<float>(b.width) * unit;
+    if (size < t.face.size * 0.6f || size > t.face.size * 1.6f)
+        return;  // a face is there, but this box is not a sensible measure of it
+    // Patch offset back to the image: rotate by the roll used for warping.
+    const float px = (static_cast<float>(b.x) + static_cast<float>(b.width) * 0.5f - half) * unit;
+    const float py = (static_cast<float>(b.y) + static_cast<float>(b.height) * 0.5f - half) * unit;
+    const float c = std::cos(roll / kRadToDeg);
+    const float s = std::sin(roll / kRadToDeg);
+    t.face.centre.x += 0.8f * (c * px - s * py);
+    t.face.centre.y += 0.8f * (s * px + c * py);
+    t.face.size += 0.8f * (size - t.face.size);
+    t.verifiedSinceAnchor = 0;
+    correctRoll(gray, t);
+}
+
+void TrackVerifier::correctRoll(const ConstImageView& gray, Track& t) noexcept
+{
+    // Tracking accumulates small rotation errors (corners on hair and outline pull the fit
+    // towards no rotation): when a face is re-anchored, its roll is measured again from the
+    // image and the track moves halfway towards it.
+    if (!imageRoll_ || options_.mode == FaceTrackingMode::Translation)
+        return;
+    const RollEstimate r = imageRoll_->estimate(gray, t.face.centre, t.face.size);
+    if (r.confidence < kMinImageRollConfidence ||
+        std::fabs(r.rollDegrees - t.face.rollDegrees) > 20.f)
+        return;
+    t.face.rollDegrees += 0.5f * (r.rollDegrees - t.face.rollDegrees);
+}
+
+}  // namespace vision
