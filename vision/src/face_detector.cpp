@@ -45,7 +45,7 @@ struct WindowFilter {
 struct FaceDetector::Impl {
     Impl(const HaarCascade& haar, const FaceDetectorOptions& o)
         : options(checked(o)),
-          cascade(haar, o.maxFrameSize.width + 1, o.rowPrefilter),
+          cascade(haar, o.maxFrameSize.width + 1, true),
           tables(o.maxFrameSize, cascade.rowForm()),
           prefilter(o.maxFrameSize.width + 1),
           grouping(o.maxRawHits),
@@ -427,40 +427,6 @@ bool FaceDetector::rawHitsOverflowed() const noexcept
 long FaceDetector::windowsEvaluated() const noexcept
 {
     return impl_->windows;
-}
-
-int FaceDetector::evaluateWindow(const ConstImageView& gray, int x, int y) noexcept
-{
-    Impl& d = *impl_;
-    if (!d.checkImage(gray))
-        return -1;
-    const FixedCascade& c = d.cascade;
-    if (x < 0 || y < 0 || x + c.windowWidth() > gray.width || y + c.windowHeight() > gray.height)
-        return -1;
-    d.tables.prepare(gray, gray.width, gray.height, false);
-    const std::ptrdiff_t at = static_cast<std::ptrdiff_t>(y) * d.tables.stride() + x;
-    return c.evaluate(d.tables.sum() + at, d.tables.squaredSum() + at);
-}
-
-int FaceDetector::groupRectangles(std::span<const Rect> rects, int minNeighbors, double eps,
-                                  std::span<Rect> out) noexcept
-{
-    return impl_->grouping.group(rects, minNeighbors, eps, out);
-}
-
-const std::int32_t* FaceDetector::sumTable() const noexcept
-{
-    return impl_->tables.sum();
-}
-
-const std::uint32_t* FaceDetector::squaredSumTable() const noexcept
-{
-    return impl_->tables.squaredSum();
-}
-
-int FaceDetector::tableStride() const noexcept
-{
-    return impl_->tables.stride();
 }
 
 Size FaceDetector::windowSize() const noexcept

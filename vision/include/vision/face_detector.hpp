@@ -13,7 +13,6 @@
 #include "vision/image.hpp"
 #include "vision/integral_image.hpp"
 
-#include <cstdint>
 #include <memory>
 #include <span>
 
@@ -27,10 +26,6 @@ struct FaceDetectorOptions {
     Size maxSize{0, 0};           ///< largest face box; 0 = the image size
     int maxRawHits = 8192;        ///< capacity of the raw hit list (extra hits are dropped)
     int maxFaces = 128;           ///< capacity of the grouped result
-    /// Evaluate the first stages for a whole row of windows at once (one weak classifier over
-    /// consecutive windows: SIMD), then each survivor alone. Same results either way; false
-    /// (one window at a time throughout) is a testing aid.
-    bool rowPrefilter = true;
 };
 
 class FaceDetector {
@@ -91,22 +86,6 @@ public:
     /// Windows evaluated by the last scan (after masking); for detectMaskedIncremental(), by
     /// the last call.
     long windowsEvaluated() const noexcept;
-
-    /// Cascade result for one window at scale 1 of `gray` (its integral images computed here):
-    /// 1 when it passes, -s when stage s rejects it (0: the first stage), -1 also when the
-    /// window is flat or outside. Testing aid, same decision path as the scans.
-    int evaluateWindow(const ConstImageView& gray, int x, int y) noexcept;
-
-    /// The integral tables of the last scale prepared (scale 1 after evaluateWindow): sums and
-    /// 32-bit wrapping squared sums, (w + 1) x (h + 1) entries at tableStride() per row.
-    const std::int32_t* sumTable() const noexcept;
-    const std::uint32_t* squaredSumTable() const noexcept;
-    int tableStride() const noexcept;
-
-    /// cv::groupRectangles(rects, minNeighbors, eps) into `out` (capacity out.size()), using
-    /// this detector's working arrays (rects.size() <= maxRawHits). Returns the count.
-    int groupRectangles(std::span<const Rect> rects, int minNeighbors, double eps,
-                        std::span<Rect> out) noexcept;
 
     /// The cascade's window (width, height): the smallest face box.
     Size windowSize() const noexcept;
