@@ -1,10 +1,15 @@
 // FaceDetector on synthetic images: integral tables against brute force, window decisions of
-// the fixed-point evaluator against a float reference written like OpenCV's, and the scan modes
-// (full, masked with exclusions, incremental under a window budget, first hit) without heap
-// allocation per frame.
+// the fixed-point cascade against a float reference written like OpenCV's, the row prefilter
+// against the exact path, the grouping, and the scan modes (full, masked with exclusions,
+// incremental under a window budget, first hit) without heap allocation per frame. The parts of
+// the detector are reached through their private headers (vision/src).
 #include "vision/face_detector.hpp"
 
 #include "alloc_counter.hpp"
+#include "detection_grouping.hpp"
+#include "fixed_cascade.hpp"
+#include "row_prefilter.hpp"
+#include "scaled_integrals.hpp"
 #include "vision/haar_cascade.hpp"
 #include "vision/integral_image.hpp"
 
@@ -168,12 +173,33 @@ Gray edgeImage()
     return g;
 }
 
+// One window at scale 1 of an image, decided as the scans decide it.
+struct WindowEvaluator {
+    FixedCascade cascade;
+    ScaledIntegrals tables;
+
+    WindowEvaluator(const HaarCascade& c, Size maxFrameSize)
+        : cascade(c, maxFrameSize.width + 1, false), tables(maxFrameSize, false)
+    {
+    }
+    // 1 when it passes, -s when stage s rejects it, -1 also when it is flat or outside.
+    int operator()(const Gray& g, int x, int y)
+    {
+        if (x < 0 || y < 0 || x + cascade.windowWidth() > g.width ||
+            y + cascade.windowHeight() > g.height)
+            return -1;
+        tables.prepare(g.view(), g.width, g.height, false);
+        const std::ptrdiff_t at = static_cast<std::ptrdiff_t>(y) * tables.stride() + x;
+        return cascade.evaluate(tables.sum() + at, tables.squaredSum() + at);
+    }
+};
+
 TEST(FaceDetector, IntegralTablesMatchBruteForce)
 {
-    FaceDetector d(parseHaarCascade(kEdgeCascade, "edge"), smallOptions(0));
+    ScaledIntegrals t({64, 48}, false);
     const Gray g = randomImage(61, 47, 7);
-    d.evaluateWindow(g.view(), 0, 0);
-    const int stride = d.tableStride();
+    t.prepare(g.view(), g.width, g.height, false);
+    const int stride = t.stride();
     for (int y = 0; y <= g.height; y += 3) {
         for (int x = 0; x <= g.width; x += 2) {
             long long s = 0;
@@ -185,24 +211,24 @@ TEST(FaceDetector, IntegralTablesMatchBruteForce)
                     q += v * v;
                 }
             }
-            ASSERT_EQ(d.sumTable()[y * stride + x], s) << x << "," << y;
-            ASSERT_EQ(d.squaredSumTable()[y * stride + x], static_cast<std::uint32_t>(q));
+            ASSERT_EQ(t.sum()[y * stride + x], s) << x << "," << y;
+            ASSERT_EQ(t.squaredSum()[y * stride + x], static_cast<std::uint32_t>(q));
         }
     }
 }
 
 TEST(FaceDetector, EdgeCascadeWindowDecisions)
 {
-    FaceDetector d(parseHaarCascade(kEdgeCascade, "edge"), smallOptions(0));
+    WindowEvaluator evaluate(parseHaarCascade(kEdgeCascade, "edge"), {64, 48});
     Gray g(12, 6, 0);
     for (int y = 0; y < 6; ++y) {
         for (int x = 0; x < 12; ++x)
             g.at(x, y) = x < 3 ? 200 : (x < 6 ? 50 : 120);
     }
-    EXPECT_EQ(d.evaluateWindow(g.view(), 0, 0), 1);   // bright left half: passes
-    EXPECT_EQ(d.evaluateWindow(g.view(), 3, 0), 0);   // dark | flat-ish grey: stage 0 rejects
-    EXPECT_EQ(d.evaluateWindow(g.view(), 6, 0), -1);  // flat: rejected by the variance test
-    EXPECT_EQ(d.evaluateWindow(g.view(), 7, 0), -1);  // outside the image
+    EXPECT_EQ(evaluate(g, 0, 0), 1);   // bright left half: passes
+    EXPECT_EQ(evaluate(g, 3, 0), 0);   // dark | flat-ish grey: stage 0 rejects
+    EXPECT_EQ(evaluate(g, 6, 0), -1);  // flat: rejected by the variance test
+    EXPECT_EQ(evaluate(g, 7, 0), -1);  // outside the image
 }
 
 void compareWithReference(const char* path)
@@ -210,16 +236,14 @@ void compareWithReference(const char* path)
     if (!std::filesystem::exists(path))
         GTEST_SKIP() << "opencv-data not installed";
     const HaarCascade c = loadHaarCascade(path);
-    FaceDetectorOptions o;
-    o.maxFrameSize = {64, 48};
-    FaceDetector d(c, o);
+    WindowEvaluator evaluate(c, {64, 48});
     int compared = 0;
     int deep = 0;
     for (unsigned seed = 1; seed <= 3; ++seed) {
         const Gray g = randomImage(64, 48, seed);
         for (int y = 0; y + c.windowHeight <= g.height; y += 3) {
             for (int x = 0; x + c.windowWidth <= g.width; x += 3) {
-                const int ours = d.evaluateWindow(g.view(), x, y);
+                const int ours = evaluate(g, x, y);
                 ASSERT_EQ(ours, referenceEvaluate(c, g, x, y)) << path << " " << x << "," << y;
                 ++compared;
                 deep += ours < -1 || ours == 1;
@@ -239,8 +263,41 @@ TEST(FaceDetector, WindowDecisionsMatchFloatReferenceAlt2)
     compareWithReference(kAlt2);
 }
 
-// The row prefilter (first stages over a whole row, float decisions) must decide every window
-// as the one-window-at-a-time integer path does, on both stump and tree cascades.
+// The row prefilter (first stages over a whole row, float decisions), then the exact path from
+// where it stopped, must decide every window as the exact path alone does. Every row of `g` at
+// scale 1 with `step` (the split table for step 2), from window j0 on; `c` built for tables of
+// maxFrameSize.
+struct PrefilterCount {
+    long passed = 0;  // windows that pass the cascade
+    long parked = 0;  // windows the prefilter left to the exact path at an undecidable sum
+};
+
+PrefilterCount comparePrefilterRows(const FixedCascade& c, Size maxFrameSize, const Gray& g,
+                                    int step, int j0)
+{
+    ScaledIntegrals t(maxFrameSize, true);
+    RowPrefilter prefilter(maxFrameSize.width + 1);
+    t.prepare(g.view(), g.width, g.height, step == 2);
+    const int j1 = (g.width + 1 - c.windowWidth() + step - 1) / step;
+    PrefilterCount count;
+    for (int y = 0; y + c.windowHeight() <= g.height; ++y) {
+        const int done = prefilter.run(c, t, y, step, j0, j1);
+        for (int j = j0; j < j1; ++j) {
+            const std::ptrdiff_t at = static_cast<std::ptrdiff_t>(y) * t.stride() + j * step;
+            const int exact = c.evaluate(t.sum() + at, t.squaredSum() + at);
+            const int pre = done > 0 ? prefilter.result(j) : 1;
+            const int from = pre == 1 ? done : prefilter.from(j);
+            const int ours = pre <= 0 ? pre : c.evaluate(t.sum() + at, t.squaredSum() + at, from);
+            EXPECT_EQ(ours, exact) << g.width << " step " << step << " at " << j * step << "," << y;
+            if (ours != exact)
+                return count;
+            count.passed += exact == 1;
+            count.parked += pre == 2;
+        }
+    }
+    return count;
+}
+
 void compareRowPrefilter(const char* path)
 {
     if (!std::filesystem::exists(path))
@@ -252,26 +309,20 @@ void compareRowPrefilter(const char* path)
     for (const std::size_t stageCount : {std::size_t{4}, std::size_t{8}, full.stages.size()}) {
         HaarCascade c = full;
         c.stages.resize(stageCount);
-        FaceDetectorOptions o;
-        o.maxFrameSize = {160, 120};
-        o.minNeighbors = 0;
-        o.maxRawHits = 20000;
-        o.maxFaces = 20000;
-        FaceDetector rows(c, o);
-        o.rowPrefilter = false;
-        FaceDetector single(c, o);
-        // An even and an odd size (the deinterleaved table's last column).
+        const Size maxFrameSize{160, 120};
+        const FixedCascade cascade(c, maxFrameSize.width + 1, true);
+        ASSERT_TRUE(cascade.rowForm());
+        // An even and an odd size (the deinterleaved table's last column), both steps, and a
+        // row taken up after its first windows (an incremental scan resuming).
         const Gray images[] = {randomImage(160, 120, 11), randomImage(131, 97, 12)};
         for (const Gray& g : images) {
-            rows.detect(g.view());
-            single.detect(g.view());
-            EXPECT_EQ(rows.windowsEvaluated(), single.windowsEvaluated()) << g.width;
-            EXPECT_EQ(copyOf(rows.rawHits()), copyOf(single.rawHits())) << g.width;
-            hits += static_cast<long>(rows.rawHits().size());
+            for (const int step : {1, 2})
+                hits += comparePrefilterRows(cascade, maxFrameSize, g, step, 0).passed;
+            hits += comparePrefilterRows(cascade, maxFrameSize, g, 2, 5).passed;
         }
     }
     EXPECT_GT(hits, 100);
-    std::printf("[ info ] %s: %ld raw hits compared\n", path, hits);
+    std::printf("[ info ] %s: %ld passing windows compared\n", path, hits);
 }
 
 TEST(FaceDetector, RowPrefilterDecidesLikeSingleWindowsDefault)
@@ -290,16 +341,14 @@ TEST(FaceDetector, RowPrefilterLeavesStageSumsOnTheThresholdToTheExactPath)
     HaarCascade c = parseHaarCascade(kEdgeCascade, "edge");
     c.stages[0].threshold = 0.3f;
     c.leaves[static_cast<std::size_t>(c.weak[0].firstLeaf + 1)] = 0.3f - 1e-5f;
-    const Gray g = edgeImage();
-    FaceDetectorOptions o = smallOptions(0);
-    FaceDetector rows(c, o);
-    o.rowPrefilter = false;
-    FaceDetector single(c, o);
-    rows.detect(g.view());
-    single.detect(g.view());
-    EXPECT_GT(single.rawHits().size(), 3u);
-    EXPECT_EQ(copyOf(rows.rawHits()), copyOf(single.rawHits()));
-    EXPECT_EQ(rows.windowsEvaluated(), single.windowsEvaluated());
+    const Size maxFrameSize{64, 48};
+    const FixedCascade cascade(c, maxFrameSize.width + 1, true);
+    ASSERT_TRUE(cascade.rowForm());
+    for (const int step : {1, 2}) {
+        const PrefilterCount n = comparePrefilterRows(cascade, maxFrameSize, edgeImage(), step, 0);
+        EXPECT_GT(n.passed, 3);
+        EXPECT_EQ(n.parked, n.passed) << step;
+    }
 }
 
 TEST(FaceDetector, FullScanFindsTheEdgeAndGroupsIt)
@@ -322,17 +371,17 @@ TEST(FaceDetector, FullScanFindsTheEdgeAndGroupsIt)
 
 TEST(FaceDetector, GroupRectanglesLikeOpenCv)
 {
-    FaceDetector d(parseHaarCascade(kEdgeCascade, "edge"), smallOptions(2));
+    DetectionGrouping d(16);
     const Rect in[] = {{10, 10, 20, 20}, {11, 10, 20, 20}, {10, 11, 21, 21}, {50, 50, 20, 20},
                        {90, 90, 10, 10}, {91, 90, 10, 10}, {90, 91, 10, 10}, {11, 11, 20, 20}};
     Rect out[8];
-    const int n = d.groupRectangles(in, 2, 0.2, out);
+    const int n = d.group(in, 2, 0.2, out);
     ASSERT_EQ(n, 2);
     // Means rounded: (10+11+10+11)/4 = 10.5 -> 10 (to even), widths (20+20+21+20)/4 = 20.25.
     EXPECT_EQ(out[0], (Rect{10, 10, 20, 20}));
     EXPECT_EQ(out[1], (Rect{90, 90, 10, 10}));
     // A lone rectangle does not survive minNeighbors 2; with 0 everything is returned.
-    EXPECT_EQ(d.groupRectangles(in, 0, 0.2, out), 8);
+    EXPECT_EQ(d.group(in, 0, 0.2, out), 8);
 }
 
 TEST(FaceDetector, MaskedScanSkipsUnmaskedAndExcludedWindows)

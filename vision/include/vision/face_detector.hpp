@@ -1,33 +1,7 @@
 #pragma once
-// FaceDetector: our Viola-Jones evaluator (METHOD.md §3) for an OpenCV Haar cascade, built to give
-// the same boxes as cv::CascadeClassifier::detectMultiScale (OpenCV 4.6) with the same cascade
-// and parameters, in integer arithmetic, without allocating per frame.
-//
-// What it matches of OpenCV (cascadedetect.cpp):
-//  - scales: factor = scaleFactor^k (double, stored as float) while the window fits the image;
-//    those with a window below minSize skipped, the first above maxSize ends the list;
-//  - the image is shrunk per scale to round(size / scale) with OpenCV's bit-exact bilinear
-//    resize (INTER_LINEAR_EXACT: 8-bit fractional weights, rounded), and a fixed window slides
-//    over it with a step of 2 px when scale < 2 and 1 px otherwise, skipping one more step
-//    after a window rejected by the first stage; rows limited as OpenCV's stripes limit them
-//    (ceil(w0 / 32) stripes of whole steps, rounded down: sometimes the last row is not scanned);
-//  - a window is rejected when the standard deviation over its inner (w-2)x(h-2) area is <= 10;
-//  - features normalised by 1/sqrt(area * sqsum - sum^2) rounded to float, stage thresholds
-//    lowered by 1e-5, raw hits at (round(x * scale), round(y * scale), round(24 * scale));
-//  - grouping as cv::groupRectangles(minNeighbors, eps 0.2), then boxes clipped to the image.
-// The decisions are exact integer comparisons equivalent to OpenCV's float ones: the float
-// normalisation factor is an integer in Q48, thresholds are placed half a float step below
-// (so a product OpenCV rounds onto the threshold counts as not below it), leaves are Q40.
-//
-// Speed (about 3x OpenCV on one core with the default cascade, 2x with alt2): the first stages
-// run for a whole row of windows at once, one weak classifier over consecutive windows (SIMD;
-// step-2 scales use a column-deinterleaved copy of the sum table so those windows are
-// consecutive too), while at least a quarter of the row's span is alive. There the decisions
-// are OpenCV's float comparisons themselves (feature sums are exact in float, the product is
-// rounded once, as in OpenCV) and stage sums are Q20 in 32 bits: a stage decides a window only
-// when the rounding cannot matter, otherwise the window goes to the exact path from that
-// stage. The survivors continue one at a time in the integer path (stumps sorted by decisiveness
-// within a stage, early exit when the rest of a stage cannot change its outcome).
+// FaceDetector: Viola-Jones face detection (METHOD.md §3) with an OpenCV Haar cascade. It gives
+// the same boxes as cv::CascadeClassifier::detectMultiScale (OpenCV 4.6) with the same cascade and
+// parameters, in integer arithmetic, and allocates nothing per frame.
 //
 // Modes: full scan (detect), masked scan (detectMasked: windows with too little mask, or whose
 // centre lies in an excluded box, are skipped), the same scan spread over frames under a window
@@ -39,7 +13,6 @@
 #include "vision/image.hpp"
 #include "vision/integral_image.hpp"
 
-#include <cstdint>
 #include <memory>
 #include <span>
 
@@ -53,10 +26,6 @@ struct FaceDetectorOptions {
     Size maxSize{0, 0};           ///< largest face box; 0 = the image size
     int maxRawHits = 8192;        ///< capacity of the raw hit list (extra hits are dropped)
     int maxFaces = 128;           ///< capacity of the grouped result
-    /// Evaluate the first stages for a whole row of windows at once (one weak classifier over
-    /// consecutive windows: SIMD), then each survivor alone. Same results either way; false
-    /// (one window at a time throughout) is a testing aid.
-    bool rowPrefilter = true;
 };
 
 class FaceDetector {
@@ -118,22 +87,7 @@ public:
     /// the last call.
     long windowsEvaluated() const noexcept;
 
-    /// Cascade result for one window at scale 1 of `gray` (its integral images computed here):
-    /// 1 when it passes, -s when stage s rejects it (0: the first stage), -1 also when the
-    /// window is flat or outside. Testing aid, same decision path as the scans.
-    int evaluateWindow(const ConstImageView& gray, int x, int y) noexcept;
-
-    /// The integral tables of the last scale prepared (scale 1 after evaluateWindow): sums and
-    /// 32-bit wrapping squared sums, (w + 1) x (h + 1) entries at tableStride() per row.
-    const std::int32_t* sumTable() const noexcept;
-    const std::uint32_t* squaredSumTable() const noexcept;
-    int tableStride() const noexcept;
-
-    /// cv::groupRectangles(rects, minNeighbors, eps) into `out` (capacity out.size()), using
-    /// this detector's working arrays (rects.size() <= maxRawHits). Returns the count.
-    int groupRectangles(std::span<const Rect> rects, int minNeighbors, double eps,
-                        std::span<Rect> out) noexcept;
-
+    /// The cascade's window (width, height): the smallest face box.
     Size windowSize() const noexcept;
     const char* lastError() const noexcept;
 

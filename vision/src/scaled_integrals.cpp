@@ -1,0 +1,147 @@
+// One scale of the scan: OpenCV's bit-exact bilinear resize and the integral tables.
+//
+// As cv::CascadeClassifier::detectMultiScale (OpenCV 4.6), the image is shrunk per scale to
+// round(size / scale) with resize(INTER_LINEAR_EXACT): source positions from the double scale,
+// 8-bit fractional weights rounded per axis, the vertical pass rounded once at the end. The sum
+// table is 32-bit, the squared sum table wraps in 32 bits as OpenCV's does (window sums, taken
+// as differences, stay exact).
+
+#include "scaled_integrals.hpp"
+
+#include <cmath>
+#include <cstring>
+
+namespace vision {
+namespace {
+
+constexpr int kResizeShift = 8;  // INTER_LINEAR_EXACT weights for 8-bit images
+
+// Per-scale tables of the bit-exact bilinear resize along one axis: source offsets and weights.
+struct ResizeAxis {
+    int* ofs0;
+    int* ofs1;
+    std::int32_t* w0;
+    std::int32_t* w1;
+};
+
+void resizeTable(int srcSize, int dstSize, ResizeAxis t) noexcept
+{
+    // OpenCV: inv_scale = dst / src (double); scale = 1 / inv_scale; fval = scale * (d + 0.5) -
+    // 0.5; weights rounded to 1/256, the first weight being 256 minus the second.
+    const double invScale = static_cast<double>(dstSize) / static_cast<double>(srcSize);
+    const double scale = 1.0 / invScale;
+    for (int d = 0; d < dstSize; ++d) {
+        const double fval = scale * (static_cast<double>(d) + 0.5) - 0.5;
+        const int ival = static_cast<int>(std::floor(fval));
+        if (ival >= 0 && srcSize > 1 && ival < srcSize - 1) {
+            const int w1 = static_cast<int>(
+                std::nearbyint((fval - static_cast<double>(ival)) * (1 << kResizeShift)));
+            t.ofs0[d] = ival;
+            t.ofs1[d] = ival + 1;
+            t.w1[d] = w1;
+            t.w0[d] = (1 << kResizeShift) - w1;
+        } else {
+            const int edge = ival < 0 || srcSize <= 1 ? 0 : srcSize - 1;
+            t.ofs0[d] = edge;
+            t.ofs1[d] = edge;
+            t.w0[d] = 1 << kResizeShift;
+            t.w1[d] = 0;
+        }
+    }
+}
+
+}  // namespace
+
+ScaledIntegrals::ScaledIntegrals(Size maxFrameSize, bool splitTable)
+    : stride_(maxFrameSize.width + 1), scaledStride_(maxFrameSize.width)
+{
+    const auto maxW = static_cast<std::size_t>(maxFrameSize.width);
+    const auto maxH = static_cast<std::size_t>(maxFrameSize.height);
+    scaled_.assign(maxW * maxH, 0);
+    // Row 0 and column 0 of the tables stay zero.
+    sum_.assign((maxW + 1) * (maxH + 1), 0);
+    sqsum_.assign((maxW + 1) * (maxH + 1), 0);
+    if (splitTable)
+        sumSplit_.assign((maxW + 1) * (maxH + 1), 0);
+    for (auto* v : {&xofs0_, &xofs1_})
+        v->assign(maxW, 0);
+    for (auto* v : {&yofs0_, &yofs1_})
+        v->assign(maxH, 0);
+    for (auto* v : {&xw0_, &xw1_})
+        v->assign(maxW, 0);
+    for (auto* v : {&yw0_, &yw1_})
+        v->assign(maxH, 0);
+}
+
+void ScaledIntegrals::prepare(const ConstImageView& gray, int dw, int dh, bool split) noexcept
+{
+    shrink(gray, dw, dh);
+    integrate(dw, dh);
+    if (split)
+        deinterleave(dw, dh);
+}
+
+void ScaledIntegrals::shrink(const ConstImageView& gray, int dw, int dh) noexcept
+{
+    resizeTable(gray.width, dw, {xofs0_.data(), xofs1_.data(), xw0_.data(), xw1_.data()});
+    resizeTable(gray.height, dh, {yofs0_.data(), yofs1_.data(), yw0_.data(), yw1_.data()});
+    const bool copy = dw == gray.width && dh == gray.height;
+    for (int y = 0; y < dh; ++y) {
+        std::uint8_t* out = scaled_.data() + static_cast<std::ptrdiff_t>(y) * scaledStride_;
+        if (copy) {
+            std::memcpy(out, gray.row(y), static_cast<std::size_t>(dw));
+            continue;
+        }
+        const std::uint8_t* r0 = gray.row(yofs0_[static_cast<std::size_t>(y)]);
+        const std::uint8_t* r1 = gray.row(yofs1_[static_cast<std::size_t>(y)]);
+        const std::uint32_t a = static_cast<std::uint32_t>(yw0_[static_cast<std::size_t>(y)]);
+        const std::uint32_t b = static_cast<std::uint32_t>(yw1_[static_cast<std::size_t>(y)]);
+        for (int x = 0; x < dw; ++x) {
+            const int o0 = xofs0_[static_cast<std::size_t>(x)];
+            const int o1 = xofs1_[static_cast<std::size_t>(x)];
+            const auto c0 = static_cast<std::uint32_t>(xw0_[static_cast<std::size_t>(x)]);
+            const auto c1 = static_cast<std::uint32_t>(xw1_[static_cast<std::size_t>(x)]);
+            const std::uint32_t h0 = r0[o0] * c0 + r0[o1] * c1;
+            const std::uint32_t h1 = r1[o0] * c0 + r1[o1] * c1;
+            out[x] = static_cast<std::uint8_t>((h0 * a + h1 * b + (1u << 15)) >> 16);
+        }
+    }
+}
+
+void ScaledIntegrals::integrate(int dw, int dh) noexcept
+{
+    for (int y = 0; y < dh; ++y) {
+        const std::uint8_t* in = scaled_.data() + static_cast<std::ptrdiff_t>(y) * scaledStride_;
+        std::int32_t* s1 = sum_.data() + static_cast<std::ptrdiff_t>(y + 1) * stride_ + 1;
+        const std::int32_t* s0 = s1 - stride_;
+        std::uint32_t* q1 = sqsum_.data() + static_cast<std::ptrdiff_t>(y + 1) * stride_ + 1;
+        const std::uint32_t* q0 = q1 - stride_;
+        std::int32_t rs = 0;
+        std::uint32_t rq = 0;
+        for (int x = 0; x < dw; ++x) {
+            const std::uint32_t v = in[x];
+            rs += static_cast<std::int32_t>(v);
+            rq += v * v;  // wraps like OpenCV's 32-bit table; window sums stay exact
+            s1[x] = s0[x] + rs;
+            q1[x] = q0[x] + rq;
+        }
+    }
+}
+
+void ScaledIntegrals::deinterleave(int dw, int dh) noexcept
+{
+    const int half = (stride_ + 1) / 2;
+    for (int y = 0; y <= dh; ++y) {
+        const std::int32_t* in = sum_.data() + static_cast<std::ptrdiff_t>(y) * stride_;
+        std::int32_t* even = sumSplit_.data() + static_cast<std::ptrdiff_t>(y) * stride_;
+        std::int32_t* odd = even + half;
+        for (int x = 0; x + 1 <= dw; x += 2) {
+            even[x >> 1] = in[x];
+            odd[x >> 1] = in[x + 1];
+        }
+        if ((dw & 1) == 0)
+            even[dw >> 1] = in[dw];
+    }
+}
+
+}  // namespace vision

@@ -1,0 +1,49 @@
+#pragma once
+// ScaledIntegrals: one scale of FaceDetector's scan (METHOD.md §3): the frame shrunk with OpenCV's
+// bit-exact bilinear resize (INTER_LINEAR_EXACT) and the integral tables the cascade reads.
+// Buffers are sized once for the largest frame; prepare() never allocates.
+
+#include "vision/geometry.hpp"
+#include "vision/image.hpp"
+
+#include <cstdint>
+#include <vector>
+
+namespace vision {
+
+class ScaledIntegrals {
+public:
+    /// Buffers for frames up to `maxFrameSize`; with `splitTable`, also for the
+    /// column-deinterleaved sum table.
+    ScaledIntegrals(Size maxFrameSize, bool splitTable);
+
+    /// Shrinks the Gray8 `gray` to dw x dh (at most its size) and builds the sum and squared
+    /// sum tables; with `split`, also the column-deinterleaved sum table.
+    void prepare(const ConstImageView& gray, int dw, int dh, bool split) noexcept;
+
+    /// Entries per table row: maxFrameSize.width + 1.
+    int stride() const noexcept { return stride_; }
+    /// Sums over [0, x) x [0, y) at y * stride() + x, for 0 <= x <= dw, 0 <= y <= dh.
+    const std::int32_t* sum() const noexcept { return sum_.data(); }
+    /// Squared sums, wrapping in 32 bits like OpenCV's table (window sums stay exact).
+    const std::uint32_t* squaredSum() const noexcept { return sqsum_.data(); }
+    /// `sum()` with each row's even columns first, then the odd ones from (stride() + 1) / 2 on:
+    /// the windows of a step-2 row are consecutive entries.
+    const std::int32_t* splitSum() const noexcept { return sumSplit_.data(); }
+
+private:
+    void shrink(const ConstImageView& gray, int dw, int dh) noexcept;
+    void integrate(int dw, int dh) noexcept;
+    void deinterleave(int dw, int dh) noexcept;
+
+    int stride_ = 0;
+    int scaledStride_ = 0;
+    std::vector<std::uint8_t> scaled_;
+    std::vector<std::int32_t> sum_;
+    std::vector<std::uint32_t> sqsum_;
+    std::vector<std::int32_t> sumSplit_;
+    std::vector<int> xofs0_, xofs1_, yofs0_, yofs1_;
+    std::vector<std::int32_t> xw0_, xw1_, yw0_, yw1_;
+};
+
+}  // namespace vision
