@@ -8,6 +8,21 @@ namespace {
 
 constexpr float kDegrees = 3.14159265358979f / 180.f;
 
+const std::array<float, 3>& anchorPoint(const HeadModel& head, OverlayAnchor anchor) noexcept
+{
+    switch (anchor) {
+        case OverlayAnchor::EyeMidpoint:
+            return head.eyeMidpoint;
+        case OverlayAnchor::NoseBridge:
+            return head.noseBridge;
+        case OverlayAnchor::ForeheadTop:
+            return head.foreheadTop;
+        case OverlayAnchor::HeadTop:
+            return head.headTop;
+    }
+    return head.eyeMidpoint;
+}
+
 }  // namespace
 
 // FORMAT.md: rotate x, y, z, add the offset, scale by scale * measure, put at the anchor.
@@ -22,23 +37,9 @@ Affine modelToHead(const Overlay& overlay, const HeadModel& head)
          Eigen::AngleAxisf(overlay.rotationDegrees[1] * kDegrees, Eigen::Vector3f::UnitY()) *
          Eigen::AngleAxisf(overlay.rotationDegrees[0] * kDegrees, Eigen::Vector3f::UnitX()))
             .toRotationMatrix();
-    const std::array<float, 3>* anchor = &head.eyeMidpoint;
-    switch (overlay.anchor) {
-        case OverlayAnchor::EyeMidpoint:
-            anchor = &head.eyeMidpoint;
-            break;
-        case OverlayAnchor::NoseBridge:
-            anchor = &head.noseBridge;
-            break;
-        case OverlayAnchor::ForeheadTop:
-            anchor = &head.foreheadTop;
-            break;
-        case OverlayAnchor::HeadTop:
-            anchor = &head.headTop;
-            break;
-    }
+    const std::array<float, 3>& anchor = anchorPoint(head, overlay.anchor);
     return {s * modelToHeadAxes() * rotation,
-            modelToHeadAxes() * (toVector(*anchor) * w + s * toVector(overlay.offset))};
+            modelToHeadAxes() * (toVector(anchor) * w + s * toVector(overlay.offset))};
 }
 
 }  // namespace render::detail
