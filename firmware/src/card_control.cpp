@@ -52,7 +52,7 @@ CardControl::CardControl(const Config& config, vision::CardStage& stage, render:
 
 void CardControl::requestTraining() noexcept
 {
-    // Step 1 of 4.2: the card stage learns the colour from the centre of the next good frame
+    // Step 1 of §2: the card stage learns the colour from the centre of the next good frame
     // (the card held there), the same way mirror-eval trains it.
     stage_.requestTraining(static_cast<float>(trainFraction_));
     trainPending_ = true;

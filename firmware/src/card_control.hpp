@@ -1,5 +1,5 @@
 #pragma once
-// CardControl: the loop's side of the colour card (ch. 4). The tracker runs in the pipeline's
+// CardControl: the loop's side of the colour card (§2). The tracker runs in the pipeline's
 // CardStage; this keeps its trained colour across restarts (CardModelStore), draws the picture
 // on it (CardPictureLayer), trains on request and reports, logs state changes once, and answers
 // the `card` command.

@@ -1,5 +1,5 @@
 #pragma once
-// FaceControl: the loop's side of the faces (5.1-5.2). The tracker runs in the pipeline's
+// FaceControl: the loop's side of the faces (§3-§4). The tracker runs in the pipeline's
 // MotionStage and FaceStage; this logs changes of the shown-face count once, feeds the debug HUD
 // (FaceDebugLayer: boxes, corners, roll axes) and answers the `faces` command.
 

@@ -124,7 +124,7 @@ void OverlayControl::update(std::span<const vision::TrackedFace> faces, std::int
     if (!selection_)
         return;
     selection_->update(faces, now);
-    // 5.4: overlays ride on smoothed poses (no jitter, no visible lag), lit like the face.
+    // §6: overlays ride on smoothed poses (no jitter, no visible lag), lit like the face.
     const std::span<const vision::TrackedFace> smooth = smoother_.apply(faces, now);
     layer_->setFaces(smooth);
     for (const vision::TrackedFace& f : smooth) {

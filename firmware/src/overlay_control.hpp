@@ -1,5 +1,5 @@
 #pragma once
-// OverlayControl: what the faces wear (5.4). Loads the overlay catalogue into a FaceOverlayLayer,
+// OverlayControl: what the faces wear (§6). Loads the overlay catalogue into a FaceOverlayLayer,
 // keeps who wears what (OverlaySelection) and the last choice across restarts
 // (OverlayStateStore), moves the overlays with the smoothed faces (FaceSmoother), lit like the
 // scene around each face, and answers the `overlay` command.

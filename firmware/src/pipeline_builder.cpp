@@ -52,7 +52,7 @@ vision::FaceTrackerOptions faceTrackerOptions(const Config& config)
     return o;
 }
 
-/// 5.1: motion at reduced resolution, then detection and tracking on the same grey image.
+/// §3: motion at reduced resolution, then detection and tracking on the same grey image.
 void addFaceStages(const Config& config, vision::Size size, vision::Pipeline& pipeline,
                    VisionStages& stages)
 {
@@ -85,7 +85,7 @@ VisionStages buildPipeline(const Config& config, vision::Size size, vision::Pixe
     pipeline.add(std::make_unique<vision::FrameCheckStage>(size, format));
     if (config.vision.deinterlace)
         pipeline.add(std::make_unique<vision::DeinterlaceStage>(size, format));
-    // The card's colour test works on chromaticity (ch. 3): the tracker needs the planes.
+    // The card's colour test works on chromaticity (§1): the tracker needs the planes.
     if (config.vision.chromaticity || config.card.enabled)
         pipeline.add(std::make_unique<vision::ChromaticityStage>(size));
     if (config.card.enabled) {

@@ -1,6 +1,6 @@
 #pragma once
 // The vision pipeline the config asks for: frame check, deinterlacer, chromaticity, the card
-// tracker (ch. 4), motion and faces (5.1-5.2), in the order they run.
+// tracker (§2), motion and faces (§3-§4), in the order they run.
 
 #include "firmware/config.hpp"
 #include "vision/card_stage.hpp"

@@ -129,7 +129,7 @@ void FaceDebugLayer::draw(const LayerContext& context) noexcept
     glEnableVertexAttribArray(0);
     for (int i = 0; i < gl_->count; ++i) {
         const vision::TrackedFace& f = gl_->faces[static_cast<std::size_t>(i)].face;
-        // 5.2: the box and the axis turned by the roll (clockwise on screen for positive).
+        // §4: the box and the axis turned by the roll (clockwise on screen for positive).
         const float r = f.rollDegrees * 3.14159265f / 180.f;
         const float c = std::cos(r), s = std::sin(r), h = 0.5f * f.size;
         auto at = [&](float u, float v) {

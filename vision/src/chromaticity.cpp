@@ -40,7 +40,8 @@ ChromaticityTable::ChromaticityTable()
 namespace chroma_detail {
 namespace {
 
-/// One pixel: select the table row of its sum once, then one look-up per channel (4.3).
+/// One pixel: select the table row of its sum once, then one look-up per channel (§2,
+/// dissertation 4.3).
 template <int R, int G, int B>
 inline void convertPixel(const ChromaticityTable& table, const std::uint8_t* q, std::uint8_t* r,
                          std::uint8_t* g, std::uint8_t* b) noexcept
@@ -56,7 +57,8 @@ void convertRow(const ChromaticityTable& table, const std::uint8_t* p, int w, st
                 std::uint8_t* pg, std::uint8_t* pb) noexcept
 {
     int x = 0;
-    // 4.3: unrolled by four, one table row pointer per pixel, no divides or branches.
+    // §2 (dissertation 4.3): unrolled by four, one table row pointer per pixel, no divides or
+    // branches.
     for (; x + 4 <= w; x += 4, p += 4 * Step) {
         convertPixel<R, G, B>(table, p, pr + x, pg + x, pb + x);
         convertPixel<R, G, B>(table, p + Step, pr + x + 1, pg + x + 1, pb + x + 1);

@@ -8,7 +8,8 @@
 //                 I, Q                 the eq. 4 matrix applied to 0..255 values:
 //                                      I in [-151.98, 151.98], Q in [-133.37, 133.37].
 //   hsv           H                    degrees in [-180, 180): red 0, green 120, blue -120; the
-//                                      wrap is at teal (cyan is -180), as in 3.1.2.
+//                                      wrap is at teal (cyan is -180), as in the
+//                                      dissertation's 3.1.2.
 //                 S                    (mx-mn)/mx scaled to 0..255.
 //                 V                    mx, 0..255.
 //   hls           H                    as HSV.
@@ -28,7 +29,8 @@
 //                                      (grey: 127.5).
 //   l1l2l3        l1, l2, l3           eq. 13 scaled to 0..255 (they sum to 255 off the grey axis).
 //   derivative    H                    E_l / E_ll, a dimensionless ratio, unbounded (hence dropped
-//                                      from the chromatic components, as in 3.4).
+//                                      from the chromatic components, as in the
+//                                      dissertation's 3.4).
 //                 C_l, C_ll            E_l / E and E_ll / E, dimensionless: C_l in
 //                                      [-1.296, 5.0], C_ll in [-0.952, 5.667] (the extremes are
 //                                      the pure primaries).

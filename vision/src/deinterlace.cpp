@@ -9,7 +9,8 @@ namespace {
 
 /// One odd row: out = interpolation where the odd row stands out, the odd row elsewhere. Written
 /// branch-free in 8-bit operations only (|x - y| as max - min, the floor average as
-/// (x & y) + ((x ^ y) >> 1)) so the compiler vectorises it 16-64 bytes at a time (4.3).
+/// (x & y) + ((x ^ y) >> 1)) so the compiler vectorises it 16-64 bytes at a time (§2,
+/// dissertation 4.3).
 void blendRow(const std::uint8_t* __restrict above, const std::uint8_t* odd,
               const std::uint8_t* __restrict below, std::uint8_t* out, int bytes) noexcept
 {

@@ -11,9 +11,10 @@ namespace {
 constexpr int kMaxWalk = 160;
 constexpr int kMaxBand = 4;
 
-/// Pixel (x, y) through the deinterlacing rule of 4.2.4, per channel: on an odd row, a value that
-/// differs from the even rows' above and below more than they differ from each other is the
-/// previous field (tearing) and is replaced by their mean; static detail keeps its own value.
+/// Pixel (x, y) through the deinterlacing rule of §2 (dissertation 4.2.4), per channel: on an odd
+/// row, a value that differs from the even rows' above and below more than they differ from each
+/// other is the previous field (tearing) and is replaced by their mean; static detail keeps its own
+/// value.
 void fieldPixel(const ConstImageView& rgb, int bpp, int x, int y, std::uint8_t out[3]) noexcept
 {
     const std::ptrdiff_t off = static_cast<std::ptrdiff_t>(x) * bpp;

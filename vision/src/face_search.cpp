@@ -67,7 +67,7 @@ void FaceSearch::reset() noexcept
 
 long FaceSearch::scan(const Frame& frame) noexcept
 {
-    // Tracked faces are not searched: tracking handles them faster (5.1.3).
+    // Tracked faces are not searched: tracking handles them faster (§3; dissertation 5.1.3).
     int excludedCount = 0;
     if (options_.mode != FaceTrackingMode::None)
         for (const Track& t : frame.tracks)

@@ -144,9 +144,9 @@ struct FaceTracker::Impl {
     CornerFlow cornerFlow;  ///< step 1: the images, and the tracks' corners and their flow
     FaceSearch search;      ///< step 2: the upright scan of the search mask
     IntegralImage motionIntegral;
-    const IntegralImage* motion = nullptr;  ///< this frame's mask integral; null: no mask
+    const IntegralImage* motion = nullptr;           ///< this frame's mask integral; null: no mask
     std::unique_ptr<RollByImageSymmetry> imageRoll;  ///< null: corner symmetry only
-    TrackVerifier verifier;     ///< step 4: fig. 89's upright-warped check
+    TrackVerifier verifier;                          ///< step 4: fig. 89's upright-warped check
     StaticFaceRule staticRule;  ///< step 5: faces that never move (photos on the wall) go
     TiltedScan tilted;          ///< step 2: the moving regions no track covers, turned
     std::vector<Track> tracks;  ///< [0, trackCount) live, oldest first
@@ -354,7 +354,7 @@ void FaceTracker::Impl::startTrack(Rect box, float rollHint) noexcept
 
 float FaceTracker::Impl::initialRoll(Track& t, float rollHint) noexcept
 {
-    // Beyond 5.2: the dense symmetry of the face image, which holds on small faces whose corner
+    // Beyond §4: the dense symmetry of the face image, which holds on small faces whose corner
     // sets are not symmetric; the corners' point symmetry (§4, 5.2) when it has no answer.
     if (imageRoll) {
         const RollEstimate r = imageRoll->estimate(image(), t.face.centre, t.face.size);
@@ -429,8 +429,8 @@ bool FaceTracker::Impl::keeps(Track& t) noexcept
         t.pointCount < options.minCornersPerFace)
         cornerFlow.find(t, true);
     // Confidence: recent detection record, scaled by the corners that survived the flow.
-    const float record = std::min(
-        1.f, static_cast<float>(t.face.hits) / static_cast<float>(options.confirmFrames));
+    const float record =
+        std::min(1.f, static_cast<float>(t.face.hits) / static_cast<float>(options.confirmFrames));
     t.face.confidence = seen ? std::max(record * t.face.confidence, record * 0.5f) : 0.f;
     return keep;
 }

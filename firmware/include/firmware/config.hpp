@@ -79,9 +79,8 @@ struct OverlayConfig {
 };
 
 struct VisionConfig {
-    bool chromaticity =
-        true;  ///< ch. 3: normalised-RGB planes (forced on when a colour tracker runs)
-    bool deinterlace = false;  ///< 4.2.4: remove interlace tearing first
+    bool chromaticity = true;  ///< §1: normalised-RGB planes (forced on when a colour tracker runs)
+    bool deinterlace = false;  ///< §2 (dissertation 4.2.4): remove interlace tearing first
 };
 
 struct FacesConfig {

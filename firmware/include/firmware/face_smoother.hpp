@@ -1,7 +1,7 @@
 #pragma once
 // FaceSmoother: steadies the faces the overlays are drawn on. The tracker's boxes jitter by a
 // pixel or two from frame to frame; a hat drawn straight on them would shiver. Each face's centre,
-// size and roll go through a One-Euro filter (the card's smoothing, 4.2): at rest the cutoff is
+// size and roll go through a One-Euro filter (the card's smoothing, §2): at rest the cutoff is
 // low (no jitter), moving it rises with the speed (no visible lag). Filters are kept per face id
 // in fixed slots and forgotten when the face is dropped.
 #include "vision/face_tracker.hpp"

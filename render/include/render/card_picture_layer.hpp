@@ -1,5 +1,6 @@
 #pragma once
-// CardPictureLayer: the picture on the colour card (method 4.2.5), drawn over the mirrored video.
+// CardPictureLayer: the picture on the colour card (§2, dissertation 4.2.5), drawn over the
+// mirrored video.
 
 #include "render/overlay_layer.hpp"
 #include "vision/card_tracker.hpp"
@@ -26,11 +27,11 @@ namespace render {
 /// the mirror reversing the quad's on-screen winding. Like a print on a real card seen in a real
 /// mirror, the picture appears left-right reversed on screen.
 ///
-/// Occlusion: where 4.2.5 writes depth from the object mask, this layer samples the mask itself
-/// (uploaded as a luminance texture, linearly filtered) and uses it as the picture's alpha:
-/// mask 0 (not card colour: a hand, the background) lets the video show, and the filtered edge
-/// between 0 and 255 blends instead of stepping, so the border is not jagged. One pass, no
-/// depth or stencil buffer needed (the display may have none). The quad's own edges are
+/// Occlusion: where the dissertation (4.2.5) writes depth from the object mask, this layer samples
+/// the mask itself (uploaded as a luminance texture, linearly filtered) and uses it as the
+/// picture's alpha: mask 0 (not card colour: a hand, the background) lets the video show, and the
+/// filtered edge between 0 and 255 blends instead of stepping, so the border is not jagged. One
+/// pass, no depth or stencil buffer needed (the display may have none). The quad's own edges are
 /// anti-aliased too: the shader ramps alpha over the half screen pixel either side of them.
 ///
 /// Without a picture (asset missing or unreadable) the layer draws the quad's outline instead,

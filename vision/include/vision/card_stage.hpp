@@ -1,5 +1,5 @@
 #pragma once
-// CardStage: runs the colour-card tracker (ch. 4) on every frame and publishes its observation in
+// CardStage: runs the colour-card tracker (§2) on every frame and publishes its observation in
 // FrameState::card. Needs the chromaticity stage before it (FrameState::chroma).
 //
 // Training is a product feature: requestTraining() (from the console command `card train` or a

@@ -1,7 +1,8 @@
 #pragma once
-// Chromaticity (normalised RGB), method ch. 3 and 4.3: r = R/(R+G+B), g = G/(R+G+B), b = B/(R+G+B),
-// stored as 8-bit values 0..255. Chosen by the illumination experiment (ch. 3) as the most
-// invariant space that is also the cheapest: one table look-up per channel.
+// Chromaticity (normalised RGB), METHOD.md §1-§2 (dissertation ch. 3, 4.3):
+// r = R/(R+G+B), g = G/(R+G+B), b = B/(R+G+B), stored as 8-bit values 0..255. Chosen by the
+// illumination experiment (§1) as the most invariant space that is also the cheapest: one table
+// look-up per channel.
 //
 // Exactness: every output equals round(255 * c / (R+G+B)) with halves rounded up, and 0 when the
 // sum is 0 (the dissertation's Table 1 OpenCV code divides by 3 in 8 bits first and is off by up to
@@ -15,9 +16,9 @@
 
 namespace vision {
 
-/// The look-up table of 4.3: entry [sum][c] = round(255 * c / sum) for sum in 0..765, c in 0..255.
-/// 196 KiB, built once at start-up; per pixel the row for its sum is selected once and indexed by
-/// each channel (3 look-ups, no divides).
+/// The look-up table of §2 (dissertation 4.3): entry [sum][c] = round(255 * c / sum) for sum in
+/// 0..765, c in 0..255. 196 KiB, built once at start-up; per pixel the row for its sum is selected
+/// once and indexed by each channel (3 look-ups, no divides).
 class ChromaticityTable {
 public:
     static constexpr int kSums = 766;
@@ -45,7 +46,7 @@ struct ChromaticityPlanes {
 /// (round(255 c / sum), halves up, 0 for sum 0); the SIMD paths compute them with a reciprocal and
 /// an exact integer correction instead of the table (proof in chromaticity.cpp).
 enum class ChromaticityPath : std::uint8_t {
-    Scalar,  ///< the table look-up loop of 4.3, unrolled by 4: the reference
+    Scalar,  ///< the table look-up loop of §2 (dissertation 4.3), unrolled by 4: the reference
     Sse2,    ///< x86-64 baseline
     Sse41,   ///< x86-64 with SSE4.1 (byte shuffles de-interleave the pixels)
     Avx2,    ///< x86-64 with AVX2 and FMA: the SSE4.1 arithmetic on 16 lanes

@@ -1,5 +1,5 @@
 #pragma once
-// ChromaticityStage: fills FrameState::chroma with the r, g, b chromaticity planes (ch. 3, 4.3).
+// ChromaticityStage: fills FrameState::chroma with the r, g, b chromaticity planes (§1-§2).
 
 #include "vision/chromaticity.hpp"
 #include "vision/stage.hpp"

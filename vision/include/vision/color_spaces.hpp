@@ -31,7 +31,7 @@ struct ColorSpaceInfo {
     const char* componentNames[3];  ///< e.g. {"Y", "I", "Q"}
     /// Components that carry colour rather than brightness: the ones the invariance and
     /// discriminative-power measures use (Y of YIQ, V of HSV, L of HLS/CIELAB and H of the
-    /// Gaussian derivative space are dropped, as in ch. 3).
+    /// Gaussian derivative space are dropped, as in §1).
     bool chromatic[3];
 };
 

@@ -1,5 +1,5 @@
 #pragma once
-// Table-driven fixed-point versions of the colour spaces a tracker would use (ch. 3, 4.3): integer
+// Table-driven fixed-point versions of the colour spaces a tracker would use (§1-§2): integer
 // inputs R, G, B in 0..255, no floating point and no divides per pixel except where stated, each
 // with its maximum error against the double-precision reference vision::convertReference
 // (color_spaces.hpp), measured over the RGB cube and asserted in color_spaces_fixed_test.cpp.

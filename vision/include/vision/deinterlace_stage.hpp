@@ -1,5 +1,5 @@
 #pragma once
-// DeinterlaceStage: removes interlace tearing (4.2.4, deinterlace.hpp) before any other stage
+// DeinterlaceStage: removes interlace tearing (§2, deinterlace.hpp) before any other stage
 // looks at the frame. The camera's buffer is read-only to the pipeline, so the stage writes into
 // its own frame buffer (allocated in the constructor) and replaces FrameState::frame.image with a
 // view of it; later stages and the renderer then see the deinterlaced frame. Switched on in the

@@ -5,9 +5,10 @@
 // outside; the edge is where the gradient of saturation S = (max - min) / max first exceeds a
 // threshold. Near-vertical edges are crossed along a row (horizontal gradient), near-horizontal
 // ones along a column (vertical gradient). Saturation is computed only on those sample lines
-// (4.3: touch only the pixels needed). Each edge gets a RANSAC line; corners are the
-// intersections of adjacent lines, so a corner outside the frame is extrapolated from the visible
-// parts of its two edges (the sample lines are spread over the part of each edge in the frame).
+// (§2, dissertation 4.3: touch only the pixels needed). Each edge gets a RANSAC line; corners are
+// the intersections of adjacent lines, so a corner outside the frame is extrapolated from the
+// visible parts of its two edges (the sample lines are spread over the part of each edge in the
+// frame).
 //
 // Beyond the dissertation, for sub-pixel accuracy and robustness:
 //  - each sample is the mean over a short band of pixels along the edge (sensor noise);
@@ -15,7 +16,8 @@
 //    over the transition pixels), because S is not monotonic across an edge between
 //    complementary colours and its gradient alone only places the edge to half a pixel;
 //  - interlaced video (odd rows from the previous field): row walks use even rows only and column
-//    walks deinterlace odd rows with the rule of 4.2.4, so the edge found is the current field's;
+//    walks deinterlace odd rows with the rule of §2 (dissertation 4.2.4), so the edge found is the
+//    current field's;
 //  - near-black pixels have their saturation computed against a floor (kSaturationDarkFloor).
 
 #include "vision/geometry.hpp"

@@ -3,7 +3,7 @@
 // dissertation 5.2.2): rotate the points about the box centre by each candidate angle, reflect
 // them across the vertical axis through the centre, and score how far each reflected point lands
 // from its nearest original point. The most symmetric angle is the roll. Plus the least-squares
-// line-fit baseline the dissertation compares with (5.2.3). Points only: the corners come from
+// line-fit baseline the dissertation compares with (§4; 5.2.3). Points only: the corners come from
 // whichever detector the caller runs. No allocation, no exceptions.
 
 #include "vision/geometry.hpp"
@@ -71,7 +71,7 @@ float symmetryDistance(std::span<const Point2f> points, Point2f centre, float ro
 RollEstimate estimateRollBySymmetry(std::span<const Point2f> points, Point2f centre, float boxSize,
                                     const RollEstimatorOptions& options = {}) noexcept;
 
-/// The dissertation's baseline (5.2.3): the least-squares (orthogonal) line through the points,
+/// The dissertation's baseline (§4; 5.2.3): the least-squares (orthogonal) line through the points,
 /// its slope offset by a multiple of 90 degrees into [-45, 45). Confidence is the elongation of
 /// the point cloud, (l1 - l2) / (l1 + l2) of its scatter matrix; fewer than 2 points give 0.
 RollEstimate estimateRollByLineFit(std::span<const Point2f> points) noexcept;

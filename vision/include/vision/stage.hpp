@@ -19,9 +19,9 @@ struct FrameState {
     bool valid = true;
     /// Why the frame is unusable (a static string), "" while valid.
     const char* problem = "";
-    /// Chromaticity planes (ch. 3) when the chromaticity stage ran, empty views otherwise.
+    /// Chromaticity planes (§1) when the chromaticity stage ran, empty views otherwise.
     ChromaticityPlanes chroma{};
-    /// The colour card (ch. 4) when the card stage ran, null otherwise.
+    /// The colour card (§2) when the card stage ran, null otherwise.
     const CardObservation* card = nullptr;
     /// The motion stage's foreground mask (reduced resolution, 255 = moving), empty otherwise.
     ConstImageView motionMask{};

@@ -11,7 +11,8 @@
 //
 // (>> is an arithmetic shift: floor division by 256; clamp255 limits to 0..255.) The coefficients
 // are 256 x (255/219 for luma; 1.402, 0.344, 0.714, 1.772 x 255/224 for chroma), rounded. The
-// per-component products come from constant tables (4.3: tables with fixed addresses).
+// per-component products come from constant tables (§2, dissertation 4.3: tables with fixed
+// addresses).
 //
 // Chroma is shared by a horizontal pair (YUYV: bytes Y0,U,Y1,V; NV12: one U,V pair per 2x2 block);
 // it is not interpolated, so YUV input needs an even width (and, for NV12, an even height).
