@@ -53,7 +53,7 @@ struct OverlayRenderCase::Impl {
     vision::ImageBuffer video;
     std::unique_ptr<render::Renderer> renderer;
     std::unique_ptr<render::FaceOverlayLayer> layer;
-    vision::TrackedFace faces[kFaces];
+    render::FaceDrawing faces[kFaces];
     int triangles = 0;
     std::string names;
 
@@ -118,7 +118,7 @@ OverlayRenderCase::OverlayRenderCase(const std::string& catalogueToml, int width
               [&](int a, int b) { return triangles(a) > triangles(b); });
     const float sizes[kFaces] = {0.2f, 0.16f, 0.13f};
     for (int i = 0; i < kFaces; ++i) {
-        vision::TrackedFace& f = s.faces[i];
+        vision::TrackedFace& f = s.faces[i].face;
         f.id = i + 1;
         f.size = sizes[i] * static_cast<float>(height);
         f.centre = {static_cast<float>(width) * (0.25f + 0.25f * static_cast<float>(i)),
@@ -128,7 +128,7 @@ OverlayRenderCase::OverlayRenderCase(const std::string& catalogueToml, int width
         if (order.empty())
             continue;
         const int overlay = order[static_cast<std::size_t>(i) % order.size()];
-        s.layer->setOverlay(f.id, overlay);
+        s.faces[i].overlay = overlay;
         s.triangles += static_cast<int>(triangles(overlay) / 3);
         s.names += (i ? "," : "") + s.catalogue[overlay].name;
     }
@@ -139,8 +139,8 @@ OverlayRenderCase::~OverlayRenderCase() = default;
 bool OverlayRenderCase::frame(bool overlays)
 {
     Impl& s = *impl_;
-    s.layer->setFaces(overlays ? std::span<const vision::TrackedFace>(s.faces)
-                               : std::span<const vision::TrackedFace>());
+    s.layer->setFaces(overlays ? std::span<const render::FaceDrawing>(s.faces)
+                               : std::span<const render::FaceDrawing>());
     const bool ok = s.renderer->draw(s.video.view(), s.width, s.height, nullptr);
     glFinish();
     return ok;

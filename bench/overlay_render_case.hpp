@@ -1,8 +1,8 @@
 #pragma once
-// The 3D overlays' cost per frame (the product's budget: "rendering adds at most 2 ms for 3 faces with
-// overlays, headless, software GL"): the renderer drawing a 1280x720 frame into a 1280x720 FBO with
-// depth, once with three faces wearing the catalogue's three heaviest overlays and once with no
-// face, on a surfaceless EGL context (Mesa llvmpipe here). llvmpipe is told to rasterise on the
+// The 3D overlays' cost per frame (the product's budget: "rendering adds at most 2 ms for 3 faces
+// with overlays, headless, software GL"): the renderer drawing a 1280x720 frame into a 1280x720 FBO
+// with depth, once with three faces wearing the catalogue's three heaviest overlays and once with
+// no face, on a surfaceless EGL context (Mesa llvmpipe here). llvmpipe is told to rasterise on the
 // calling thread (LP_NUM_THREADS=0, set before the context exists), so the calling thread's CPU
 // time up to glFinish is the whole cost, as on one core of the appliance, and time the loaded
 // machine spends on other jobs is not counted.

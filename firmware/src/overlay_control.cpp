@@ -98,25 +98,24 @@ void OverlayControl::warmUp(vision::Size size)
     // mirror. Draw every overlay once now, opaque and half faded, into the display's framebuffer
     // (not presented), so the first person to try a hat sees no hitch.
     const int n = selection_->size();
-    std::vector<vision::TrackedFace> faces;
     for (int pass = 0; pass < 2; ++pass) {
-        faces.clear();
+        std::size_t count = 0;
         for (int i = 0; i < n && i < render::FaceOverlayLayer::kMaxFaces; ++i) {
-            vision::TrackedFace f;
-            f.id = 1 + pass * 100 + i;
-            f.centre = {static_cast<float>(size.width) * static_cast<float>(i + 1) /
-                            static_cast<float>(n + 1),
-                        static_cast<float>(size.height) * 0.5f};
-            f.size = static_cast<float>(size.height) * 0.25f;
-            f.state = vision::FaceState::Confirmed;
-            faces.push_back(f);
-            layer_->setOverlay(f.id, i, pass == 0 ? 1.f : 0.5f);
+            render::FaceDrawing& d = drawings_[count++];
+            d = render::FaceDrawing{};
+            d.face.id = 1 + pass * 100 + i;
+            d.face.centre = {static_cast<float>(size.width) * static_cast<float>(i + 1) /
+                                 static_cast<float>(n + 1),
+                             static_cast<float>(size.height) * 0.5f};
+            d.face.size = static_cast<float>(size.height) * 0.25f;
+            d.face.state = vision::FaceState::Confirmed;
+            d.overlay = i;
+            d.alpha = pass == 0 ? 1.f : 0.5f;
         }
-        layer_->setFaces(faces);
+        layer_->setFaces({drawings_.data(), count});
         renderer_.draw(vision::ConstImageView{}, display_.width(), display_.height(), "");
     }
     layer_->setFaces({});
-    layer_->clearSelection();
 }
 
 void OverlayControl::update(std::span<const vision::TrackedFace> faces, std::int64_t now) noexcept
@@ -125,16 +124,21 @@ void OverlayControl::update(std::span<const vision::TrackedFace> faces, std::int
         return;
     selection_->update(faces, now);
     // §6: overlays ride on smoothed poses (no jitter, no visible lag), lit like the face.
-    const std::span<const vision::TrackedFace> smooth = smoother_.apply(faces, now);
-    layer_->setFaces(smooth);
-    for (const vision::TrackedFace& f : smooth) {
+    std::size_t count = 0;
+    for (const vision::TrackedFace& f : smoother_.apply(faces, now)) {
+        if (count == drawings_.size())
+            break;
+        render::FaceDrawing& d = drawings_[count++];
+        d = render::FaceDrawing{};
+        d.face = f;
         if (!f.shown())
-            continue;
+            continue;  // not drawn: wears nothing
         const OverlayChoice choice = selection_->choiceFor(f.id);
-        layer_->setOverlay(f.id, choice.overlay, choice.alpha);
-        layer_->setBrightness(f.id,
-                              std::clamp(faces_->brightnessAround(f.centre, f.size), 0.4f, 1.6f));
+        d.overlay = choice.overlay;
+        d.alpha = choice.alpha;
+        d.brightness = std::clamp(faces_->brightnessAround(f.centre, f.size), 0.4f, 1.6f);
     }
+    layer_->setFaces({drawings_.data(), count});
     if (selection_->generation() != savedGeneration_) {
         savedGeneration_ = selection_->generation();
         if (!store_->save(*selection_))

@@ -14,6 +14,7 @@
 #include "render/renderer.hpp"
 #include "vision/face_stage.hpp"
 
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <span>
@@ -55,6 +56,8 @@ private:
     std::unique_ptr<OverlayStateStore> store_;
     std::uint32_t savedGeneration_ = 0;
     FaceSmoother smoother_;
+    /// This frame's faces as the layer draws them (what each wears, its fade and light).
+    std::array<render::FaceDrawing, render::FaceOverlayLayer::kMaxFaces> drawings_{};
     std::string problem_;
 };
 

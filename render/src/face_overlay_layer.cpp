@@ -60,8 +60,8 @@ struct FaceOverlayLayer::Gl {
     Shade lit{false};
     Shade textured{true};
 
-    detail::GlProgram depth{"head proxy", detail::kDepthVertexShader, detail::kDepthFragmentShader,
-                           {"aPosition"}};
+    detail::GlProgram depth{
+        "head proxy", detail::kDepthVertexShader, detail::kDepthFragmentShader, {"aPosition"}};
     GLint modelViewProjection = depth.uniform("uModelViewProjection");
     detail::GlBuffer proxy;
     detail::GlBuffer proxyIndices;
@@ -231,87 +231,25 @@ int FaceOverlayLayer::overlayCount() const noexcept
     return static_cast<int>(gl_->overlays.size());
 }
 
-void FaceOverlayLayer::setFaces(std::span<const vision::TrackedFace> faces) noexcept
+bool FaceOverlayLayer::setFaces(std::span<const FaceDrawing> faces) noexcept
 {
+    bool known = true;
     faceCount_ = 0;
-    for (const vision::TrackedFace& face : faces) {
+    for (const FaceDrawing& face : faces) {
         if (faceCount_ == kMaxFaces)
             break;
-        Face& f = faces_[static_cast<std::size_t>(faceCount_++)];
-        f.face = face;
+        FaceDrawing& f = faces_[static_cast<std::size_t>(faceCount_++)];
+        f = face;
         f.face.points = nullptr;  // not ours to keep
         f.face.pointCount = 0;
-        f.hasPose = false;
-    }
-}
-
-bool FaceOverlayLayer::setPose(int faceId, const vision::HeadPose& pose) noexcept
-{
-    for (int i = 0; i < faceCount_; ++i) {
-        Face& f = faces_[static_cast<std::size_t>(i)];
-        if (f.face.id == faceId) {
-            f.pose = pose;
-            f.hasPose = true;
-            return true;
+        f.alpha = std::clamp(f.alpha, 0.f, 1.f);
+        f.brightness = std::max(f.brightness, 0.f);
+        if (f.overlay < -1 || f.overlay >= overlayCount()) {
+            f.overlay = -1;
+            known = false;
         }
     }
-    return false;
-}
-
-bool FaceOverlayLayer::present(int faceId) const noexcept
-{
-    for (int i = 0; i < faceCount_; ++i)
-        if (faces_[static_cast<std::size_t>(i)].face.id == faceId)
-            return true;
-    return false;
-}
-
-FaceOverlayLayer::Selection* FaceOverlayLayer::selection(int faceId) noexcept
-{
-    Selection* free = nullptr;
-    for (Selection& s : selections_) {
-        if (s.faceId == faceId)
-            return &s;
-        if (free == nullptr && s.faceId == 0)
-            free = &s;
-    }
-    if (free == nullptr)  // full: reuse the slot of a face that is gone
-        for (Selection& s : selections_)
-            if (!present(s.faceId)) {
-                free = &s;
-                break;
-            }
-    if (free != nullptr)
-        *free = Selection{faceId, -1, 1.f, 1.f};
-    return free;
-}
-
-bool FaceOverlayLayer::setOverlay(int faceId, int overlayIndex, float alpha) noexcept
-{
-    if (faceId == 0 || overlayIndex < -1 || overlayIndex >= overlayCount())
-        return false;
-    Selection* s = selection(faceId);
-    if (s == nullptr)
-        return false;
-    s->overlay = overlayIndex;
-    s->alpha = alpha < 0.f ? 0.f : (alpha > 1.f ? 1.f : alpha);
-    return true;
-}
-
-bool FaceOverlayLayer::setBrightness(int faceId, float brightness) noexcept
-{
-    if (faceId == 0)
-        return false;
-    Selection* s = selection(faceId);
-    if (s == nullptr)
-        return false;
-    s->brightness = brightness > 0.f ? brightness : 0.f;
-    return true;
-}
-
-void FaceOverlayLayer::clearSelection() noexcept
-{
-    selections_.fill(Selection{});
+    return known;
 }
 
 void FaceOverlayLayer::draw(const LayerContext& context) noexcept
@@ -323,7 +261,7 @@ void FaceOverlayLayer::draw(const LayerContext& context) noexcept
     // The faces to draw, with their poses, far first.
     struct Drawn {
         vision::HeadPose pose;
-        const Selection* selection;
+        const FaceDrawing* drawing;
         Eigen::Matrix4f modelView;       // the overlay's model -> camera frame
         Eigen::Matrix4f proxyModelView;  // the unit head proxy's
         PixelRect overlayPixels;         // what the overlay can cover
@@ -333,14 +271,8 @@ void FaceOverlayLayer::draw(const LayerContext& context) noexcept
     int count = 0;
     const vision::CameraModel camera{context.image, options_.verticalFovDegrees};
     for (int i = 0; i < faceCount_; ++i) {
-        const Face& f = faces_[static_cast<std::size_t>(i)];
-        if (!f.face.shown())
-            continue;
-        const Selection* s = nullptr;
-        for (const Selection& candidate : selections_)
-            if (candidate.faceId == f.face.id)
-                s = &candidate;
-        if (s == nullptr || s->overlay < 0 || s->overlay >= overlayCount() || s->alpha <= 0.f)
+        const FaceDrawing& f = faces_[static_cast<std::size_t>(i)];
+        if (!f.face.shown() || f.overlay < 0 || f.alpha <= 0.f)
             continue;
         const vision::HeadPose pose =
             f.hasPose ? f.pose
@@ -354,7 +286,7 @@ void FaceOverlayLayer::draw(const LayerContext& context) noexcept
             --at;
         }
         drawn[static_cast<std::size_t>(at)].pose = pose;
-        drawn[static_cast<std::size_t>(at)].selection = s;
+        drawn[static_cast<std::size_t>(at)].drawing = &f;
     }
     if (count == 0)
         return;
@@ -391,7 +323,7 @@ void FaceOverlayLayer::draw(const LayerContext& context) noexcept
     long overlayArea = 0;
     for (int i = 0; i < count; ++i) {
         Drawn& face = drawn[static_cast<std::size_t>(i)];
-        const Gl::Part& part = gl_->overlays[static_cast<std::size_t>(face.selection->overlay)];
+        const Gl::Part& part = gl_->overlays[static_cast<std::size_t>(face.drawing->overlay)];
         const Affine model = detail::modelToHead(part.placement, head);
         face.modelView.setIdentity();
         face.modelView.topLeftCorner<3, 3>() = face.pose.rotation * model.linear;
@@ -401,7 +333,8 @@ void FaceOverlayLayer::draw(const LayerContext& context) noexcept
         face.proxyModelView.topLeftCorner<3, 3>() = face.pose.rotation * proxyAxes;
         face.proxyModelView.topRightCorner<3, 1>() =
             face.pose.rotation * proxyCentre + face.pose.translation;
-        face.overlayPixels = detail::windowBounds(projection * face.modelView, part.points, viewport);
+        face.overlayPixels =
+            detail::windowBounds(projection * face.modelView, part.points, viewport);
         face.proxyPixels =
             detail::windowBounds(projection * face.proxyModelView, gl_->proxyPoints, viewport);
         overlayArea += face.overlayPixels.area();
@@ -488,10 +421,10 @@ void FaceOverlayLayer::draw(const LayerContext& context) noexcept
     // One pass draws the opaque or the transparent meshes of one face.
     int pass = 0;
     auto drawMeshes = [&](const Drawn& face, bool transparent) {
-        const Gl::Part& part = gl_->overlays[static_cast<std::size_t>(face.selection->overlay)];
+        const Gl::Part& part = gl_->overlays[static_cast<std::size_t>(face.drawing->overlay)];
         ++pass;
-        const float b = face.selection->brightness;
-        const float fade = face.selection->alpha;
+        const float b = face.drawing->brightness;
+        const float fade = face.drawing->alpha;
         for (const Gl::Mesh& mesh : part.meshes) {
             if (mesh.material.transparent() != transparent)
                 continue;
@@ -528,7 +461,7 @@ void FaceOverlayLayer::draw(const LayerContext& context) noexcept
     glDisable(GL_BLEND);
     for (int i = 0; i < count; ++i) {
         const Drawn& face = drawn[static_cast<std::size_t>(i)];
-        if (face.selection->alpha < 1.f) {
+        if (face.drawing->alpha < 1.f) {
             // Fading: lay down its depth first so only its front surface is blended.
             glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
             drawMeshes(face, false);

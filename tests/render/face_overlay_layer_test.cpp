@@ -67,6 +67,18 @@ bool writePng(const std::string& path, const std::vector<std::uint8_t>& rgb, int
                         static_cast<std::size_t>(width) * 3);
 }
 
+/// `face` wearing catalogue entry `overlay`, as the layer is given it for one frame.
+render::FaceDrawing wearing(const vision::TrackedFace& face, int overlay, float alpha = 1.f,
+                            float brightness = 1.f)
+{
+    render::FaceDrawing d;
+    d.face = face;
+    d.overlay = overlay;
+    d.alpha = alpha;
+    d.brightness = brightness;
+    return d;
+}
+
 struct Counts {
     int red = 0;    // the left temple of the test glasses (x < 0, the image left when upright)
     int green = 0;  // the right temple
@@ -115,8 +127,7 @@ TEST_F(FaceOverlayTest, TheFarTempleArmHidesBehindTheHeadWhenItTurns)
     renderer.addLayer(&layer);
     const vision::ImageBuffer video = greyFrame(kWidth, kHeight);
     const vision::TrackedFace face = centredFace();
-    layer.setFaces({&face, 1});
-    ASSERT_TRUE(layer.setOverlay(face.id, testCatalogue.find("test_glasses")));
+    render::FaceDrawing glasses = wearing(face, testCatalogue.find("test_glasses"));
 
     const std::string out = testing_support::freshOutputDir("overlay_occlusion");
     auto render = [&](float yawDegrees, bool proxy) {
@@ -129,8 +140,9 @@ TEST_F(FaceOverlayTest, TheFarTempleArmHidesBehindTheHeadWhenItTurns)
         pose.rotation = pose.rotation * Eigen::AngleAxisf(yawDegrees * 3.14159265f / 180.f,
                                                           Eigen::Vector3f::UnitY())
                                             .toRotationMatrix();
-        layer.setFaces({&face, 1});
-        EXPECT_TRUE(layer.setPose(face.id, pose));
+        glasses.hasPose = true;
+        glasses.pose = pose;
+        EXPECT_TRUE(layer.setFaces({&glasses, 1}));
         EXPECT_TRUE(renderer.draw(video.view(), kWidth, kHeight, nullptr)) << renderer.lastError();
         EXPECT_STREQ(layer.lastError(), "");
         gl.read();
@@ -176,8 +188,8 @@ TEST_F(FaceOverlayTest, MirroredIsTheUnmirroredPictureFlipped)
                           RendererOptions{mirror == 1, {}, false});
         FaceOverlayLayer layer(testCatalogue);
         renderer.addLayer(&layer);
-        layer.setFaces({&face, 1});
-        ASSERT_TRUE(layer.setOverlay(face.id, testCatalogue.find("test_hat")));
+        const render::FaceDrawing hat = wearing(face, testCatalogue.find("test_hat"));
+        ASSERT_TRUE(layer.setFaces({&hat, 1}));
         ASSERT_TRUE(renderer.draw(video.view(), kWidth, kHeight, nullptr));
         gl.read();
         pictures[mirror] = crop(gl, 0, 0, kWidth, kHeight);
@@ -231,8 +243,8 @@ TEST_F(FaceOverlayTest, SingleSidedClosedMeshesLookTheSameMirroredOrNot)
             options.headProxy = false;
             FaceOverlayLayer layer(cube, options);
             renderer.addLayer(&layer);
-            layer.setFaces({&face, 1});
-            ASSERT_TRUE(layer.setOverlay(face.id, 0));
+            const render::FaceDrawing cubeOnFace = wearing(face, 0);
+            ASSERT_TRUE(layer.setFaces({&cubeOnFace, 1}));
             ASSERT_TRUE(renderer.draw(video.view(), kWidth, kHeight, nullptr));
             gl.read();
             pictures[single] = crop(gl, 0, 0, kWidth, kHeight);
@@ -258,9 +270,8 @@ TEST_F(FaceOverlayTest, BrightnessAndFadeChangeTheLightAndTheOpacity)
     const int hat = testCatalogue.find("test_hat");
     // Sum over the crown (above the face) of |pixel - grey|.
     auto contrast = [&](float brightness, float alpha) {
-        layer.setFaces({&face, 1});
-        EXPECT_TRUE(layer.setOverlay(face.id, hat, alpha));
-        EXPECT_TRUE(layer.setBrightness(face.id, brightness));
+        const render::FaceDrawing d = wearing(face, hat, alpha, brightness);
+        EXPECT_TRUE(layer.setFaces({&d, 1}));
         EXPECT_TRUE(renderer.draw(video.view(), kWidth, kHeight, nullptr));
         gl.read();
         long sum = 0;
@@ -285,17 +296,18 @@ TEST_F(FaceOverlayTest, BrightnessAndFadeChangeTheLightAndTheOpacity)
     EXPECT_GT(bright.second, normal.second);
     EXPECT_LT(dark.second, normal.second);
 
-    // No overlay selected, or a face not shown: nothing drawn.
-    EXPECT_TRUE(layer.setOverlay(face.id, -1));
-    ASSERT_TRUE(renderer.draw(video.view(), kWidth, kHeight, nullptr));
-    gl.read();
-    EXPECT_EQ(gl.pixel(320, 60).g, 128);
-    EXPECT_FALSE(layer.setOverlay(face.id, testCatalogue.size()));
-    EXPECT_FALSE(layer.setOverlay(face.id, -2));
+    // No overlay, an overlay the catalogue does not have, or a face not shown: nothing drawn.
+    for (const int nothing : {-1, testCatalogue.size(), -2}) {
+        const render::FaceDrawing d = wearing(face, nothing);
+        EXPECT_EQ(layer.setFaces({&d, 1}), nothing == -1) << nothing;
+        ASSERT_TRUE(renderer.draw(video.view(), kWidth, kHeight, nullptr));
+        gl.read();
+        EXPECT_EQ(gl.pixel(320, 60).g, 128) << nothing;
+    }
     vision::TrackedFace tentative = face;
     tentative.state = vision::FaceState::Tentative;
-    layer.setFaces({&tentative, 1});
-    EXPECT_TRUE(layer.setOverlay(face.id, hat));
+    const render::FaceDrawing notShown = wearing(tentative, hat);
+    EXPECT_TRUE(layer.setFaces({&notShown, 1}));
     ASSERT_TRUE(renderer.draw(video.view(), kWidth, kHeight, nullptr));
     gl.read();
     EXPECT_EQ(gl.pixel(320, 60).g, 128);
@@ -307,9 +319,8 @@ TEST_F(FaceOverlayTest, SaysSoWhenTheFramebufferHasNoDepthBuffer)
     FaceOverlayLayer layer(testCatalogue);
     renderer.addLayer(&layer);
     const vision::ImageBuffer video = greyFrame(kWidth, kHeight);
-    const vision::TrackedFace face = centredFace();
-    layer.setFaces({&face, 1});
-    layer.setOverlay(face.id, 0);
+    const render::FaceDrawing d = wearing(centredFace(), 0);
+    layer.setFaces({&d, 1});
     glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, 0);
     ASSERT_TRUE(renderer.draw(video.view(), kWidth, kHeight, nullptr));
     EXPECT_NE(std::string(layer.lastError()).find("no depth buffer"), std::string::npos);
@@ -328,19 +339,20 @@ TEST_F(FaceOverlayTest, WhatEarlierFramesLeftInTheDepthBufferChangesNothing)
     const int hat = testCatalogue.find("test_hat");
     const int glasses = testCatalogue.find("test_glasses");
 
-    auto face = [](int id, float x, float y, float size) {
+    auto face = [](int id, float x, float y, float size, int overlay) {
         vision::TrackedFace f;
         f.id = id;
         f.centre = {x, y};
         f.size = size;
         f.state = vision::FaceState::Confirmed;
-        return f;
+        return wearing(f, overlay);
     };
     // Face 2 (smaller: farther) stands behind face 1's head; face 3 is apart.
-    const vision::TrackedFace group[3] = {face(1, 300.f, 260.f, 90.f), face(2, 345.f, 240.f, 55.f),
-                                          face(3, 520.f, 200.f, 60.f)};
-    const vision::TrackedFace close[1] = {face(4, 320.f, 260.f, 260.f)};
-    auto render = [&](std::span<const vision::TrackedFace> faces, float staleDepth, bool proxy) {
+    const render::FaceDrawing group[3] = {face(1, 300.f, 260.f, 90.f, hat),
+                                          face(2, 345.f, 240.f, 55.f, glasses),
+                                          face(3, 520.f, 200.f, 60.f, hat)};
+    const render::FaceDrawing close[1] = {face(4, 320.f, 260.f, 260.f, hat)};
+    auto render = [&](std::span<const render::FaceDrawing> faces, float staleDepth, bool proxy) {
         FaceOverlayOptions options = layer.options();
         options.headProxy = proxy;
         layer.setOptions(options);
@@ -358,13 +370,9 @@ TEST_F(FaceOverlayTest, WhatEarlierFramesLeftInTheDepthBufferChangesNothing)
         return n;
     };
 
-    ASSERT_TRUE(layer.setOverlay(1, hat));
-    ASSERT_TRUE(layer.setOverlay(2, glasses));
-    ASSERT_TRUE(layer.setOverlay(3, hat));
-    ASSERT_TRUE(layer.setOverlay(4, hat));
-    for (const std::span<const vision::TrackedFace> faces :
-         {std::span<const vision::TrackedFace>(group),
-          std::span<const vision::TrackedFace>(close)}) {
+    for (const std::span<const render::FaceDrawing> faces :
+         {std::span<const render::FaceDrawing>(group),
+          std::span<const render::FaceDrawing>(close)}) {
         const std::vector<std::uint8_t> clean = render(faces, 1.f, true);
         EXPECT_GT(changed(clean), 500) << faces.size() << " faces: the overlays show";
         EXPECT_TRUE(render(faces, 0.f, true) == clean) << faces.size() << " faces, stale depth 0";
@@ -437,9 +445,8 @@ f 5//1 6//1 7//1 8//1
     faces[0].centre.x = 170.f;
     faces[1].centre.x = 470.f;
     faces[1].id = 8;
-    layer.setFaces(faces);
-    ASSERT_TRUE(layer.setOverlay(faces[0].id, 0));
-    ASSERT_TRUE(layer.setOverlay(faces[1].id, 0));
+    const render::FaceDrawing drawings[2] = {wearing(faces[0], 0), wearing(faces[1], 0)};
+    ASSERT_TRUE(layer.setFaces(drawings));
     ASSERT_TRUE(renderer.draw(video.view(), kWidth, kHeight, nullptr)) << renderer.lastError();
     gl.read();
     for (int half = 0; half < 2; ++half) {
@@ -471,21 +478,20 @@ TEST_F(FaceOverlayTest, DrawingThreeFacesAllocatesNothing)
         faces[i].id = i + 1;
         faces[i].centre = {140.f + 180.f * static_cast<float>(i), 260.f};
     }
+    render::FaceDrawing drawings[3];
     for (int i = 0; i < 4; ++i) {  // warm-up: llvmpipe compiles shader variants on first use
-        layer.setFaces(faces);
         for (int f = 0; f < 3; ++f)
-            layer.setOverlay(f + 1, f % 2, i == 3 ? 0.5f : 1.f);
+            drawings[f] = wearing(faces[f], f % 2, i == 3 ? 0.5f : 1.f);
+        layer.setFaces(drawings);
         ASSERT_TRUE(renderer.draw(video.view(), kWidth, kHeight, "fps 30"));
     }
     testing_support::AllocationScope scope;
     bool ok = true;
     for (int i = 0; i < 6; ++i) {
         faces[0].centre.x += 1.f;
-        layer.setFaces(faces);
-        for (int f = 0; f < 3; ++f) {
-            ok = layer.setOverlay(f + 1, (f + i) % 2, i % 2 ? 0.5f : 1.f) && ok;
-            ok = layer.setBrightness(f + 1, 0.8f) && ok;
-        }
+        for (int f = 0; f < 3; ++f)
+            drawings[f] = wearing(faces[f], (f + i) % 2, i % 2 ? 0.5f : 1.f, 0.8f);
+        ok = layer.setFaces(drawings) && ok;
         ok = renderer.draw(video.view(), kWidth, kHeight, "fps 30") && ok;
     }
     const testing_support::AllocationCounts counts = scope.counts();
@@ -505,8 +511,8 @@ TEST_F(FaceOverlayTest, LaterFramesCompileNoShaderVariant)
     renderer.addLayer(&layer);
     const vision::ImageBuffer video = greyFrame(kWidth, kHeight);
     vision::TrackedFace face = centredFace(60.f);
-    layer.setFaces({&face, 1});
-    ASSERT_TRUE(layer.setOverlay(face.id, testCatalogue.find("test_hat"), 0.3f));
+    render::FaceDrawing d = wearing(face, testCatalogue.find("test_hat"), 0.3f);
+    ASSERT_TRUE(layer.setFaces({&d, 1}));
     // Two frames: the renderer's video quad is drawn in the first in GL's initial state.
     ASSERT_TRUE(renderer.draw(video.view(), kWidth, kHeight, nullptr));
     ASSERT_TRUE(renderer.draw(video.view(), kWidth, kHeight, nullptr));
@@ -515,13 +521,13 @@ TEST_F(FaceOverlayTest, LaterFramesCompileNoShaderVariant)
     bool ok = true;
     for (const float size : {60.f, 300.f}) {  // small: rectangles cleared; big: all
         face.size = size;
-        layer.setFaces({&face, 1});
-        ok = layer.setOverlay(face.id, testCatalogue.find("test_hat"), 1.f) && ok;
-        ok = renderer.draw(video.view(), kWidth, kHeight, nullptr) && ok;
-        ok = layer.setOverlay(face.id, testCatalogue.find("test_glasses"), 1.f) && ok;
-        ok = renderer.draw(video.view(), kWidth, kHeight, nullptr) && ok;
-        ok = layer.setOverlay(face.id, testCatalogue.find("test_glasses"), 0.5f) && ok;
-        ok = renderer.draw(video.view(), kWidth, kHeight, nullptr) && ok;
+        for (const auto& [name, alpha] :
+             {std::pair{"test_hat", 1.f}, std::pair{"test_glasses", 1.f},
+              std::pair{"test_glasses", 0.5f}}) {
+            d = wearing(face, testCatalogue.find(name), alpha);
+            ok = layer.setFaces({&d, 1}) && ok;
+            ok = renderer.draw(video.view(), kWidth, kHeight, nullptr) && ok;
+        }
     }
     const testing_support::AllocationCounts counts = scope.counts();
     EXPECT_TRUE(ok) << renderer.lastError();
@@ -559,8 +565,8 @@ void checkReferences(const std::string& cataloguePath)
     std::filesystem::create_directories(actualDir);
     for (int i = 0; i < catalogue.size(); ++i) {
         const std::string name = catalogue[i].name;
-        layer.setFaces({&face, 1});
-        ASSERT_TRUE(layer.setOverlay(face.id, i));
+        const render::FaceDrawing wearer = wearing(face, i);
+        ASSERT_TRUE(layer.setFaces({&wearer, 1}));
         ASSERT_TRUE(renderer.draw(photo.view(), kWidth, kHeight, nullptr));
         gl.read();
         const std::vector<std::uint8_t> actual = crop(gl, kCropX, kCropY, kCropWidth, kCropHeight);
@@ -635,8 +641,8 @@ TEST(FaceOverlaySnapshots, WritesEveryOverlayOnRealFacesAt720p)
         FaceOverlayLayer layer(catalogue);
         renderer.addLayer(&layer);
         for (int i = 0; i < catalogue.size(); ++i) {
-            layer.setFaces({&face, 1});
-            layer.setOverlay(face.id, i);
+            const render::FaceDrawing d = wearing(face, i);
+            layer.setFaces({&d, 1});
             ASSERT_TRUE(renderer.draw(photo.view(), kWidth, kHeight, nullptr));
             gl.read();
             ASSERT_TRUE(writePng(out + "/" + catalogue[i].name + ".png",
@@ -665,9 +671,8 @@ TEST(FaceOverlaySnapshots, WritesEveryOverlayOnRealFacesAt720p)
     renderer.addLayer(&layer);
     for (int i = 0; i < catalogue.size(); ++i) {
         const int j = (i + 1) % catalogue.size();
-        layer.setFaces(faces);
-        layer.setOverlay(1, i);
-        layer.setOverlay(2, j);
+        const render::FaceDrawing drawings[2] = {wearing(faces[0], i), wearing(faces[1], j)};
+        layer.setFaces(drawings);
         ASSERT_TRUE(renderer.draw(frame.view(), kWidth, kHeight, nullptr));
         gl.read();
         ASSERT_TRUE(

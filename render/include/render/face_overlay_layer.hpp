@@ -24,7 +24,7 @@
 //
 // The bound framebuffer needs a depth buffer (the headless display's FBO and the window EGL config
 // have one); without it nothing is hidden. GL objects are made in the constructor (a current
-// GLES2 context is needed); draw() and the setters never allocate and never throw.
+// GLES2 context is needed); draw() and setFaces() never allocate and never throw.
 
 #include "render/head_model.hpp"
 #include "render/overlay_catalogue.hpp"
@@ -51,6 +51,19 @@ struct FaceOverlayOptions {
     float farMetres = 20.f;
 };
 
+/// One face to draw this frame and what it wears. Who wears what, and its fade, belong to the
+/// caller (the firmware's OverlaySelection): the layer keeps nothing of a face between frames.
+struct FaceDrawing {
+    vision::TrackedFace face;  ///< camera image coordinates; only a shown() face is drawn
+    int overlay = -1;          ///< an index of the catalogue; -1 draws nothing
+    float alpha = 1.f;         ///< opacity 0..1, for fading in and out
+    float brightness = 1.f;    ///< light relative to normal (1; 0.5 darker; > 1 brighter)
+    /// With hasPose, `pose` places the head (a full 6-DoF pose); without it the pose comes from
+    /// the face box (vision::headPoseFromFace: yaw and pitch zero).
+    bool hasPose = false;
+    vision::HeadPose pose{};
+};
+
 class FaceOverlayLayer final : public OverlayLayer {
 public:
     static constexpr int kMaxFaces = 16;
@@ -65,23 +78,9 @@ public:
     const char* name() const noexcept override { return "face-overlays"; }
     void draw(const LayerContext& context) noexcept override;
 
-    /// The faces of this frame in camera image coordinates (FrameState::faces); only shown()
-    /// ones are drawn, at most kMaxFaces. Their poses come from vision::headPoseFromFace (yaw
-    /// and pitch zero) unless setPose() gives one.
-    void setFaces(std::span<const vision::TrackedFace> faces) noexcept;
-    /// A full 6-DoF pose for a face of the last setFaces() (e.g. smoothed by the firmware), for
-    /// this frame. False when that face is not in the set.
-    bool setPose(int faceId, const vision::HeadPose& pose) noexcept;
-
-    /// What face `faceId` wears: an index of the catalogue or -1 for none, with an opacity
-    /// 0..1 for fading in and out. Kept across frames until changed or clearSelection();
-    /// false when the index is out of range or the table is full of faces still present.
-    bool setOverlay(int faceId, int overlayIndex, float alpha = 1.f) noexcept;
-    /// The light on face `faceId` relative to normal (1 = default; 0.5 darker; > 1 brighter),
-    /// e.g. the scene's brightness around the face. False when the table is full.
-    bool setBrightness(int faceId, float brightness) noexcept;
-    /// Forgets every face's overlay and brightness.
-    void clearSelection() noexcept;
+    /// This frame's faces, at most kMaxFaces (the rest are not drawn), kept until the next
+    /// call. False when an overlay index is outside the catalogue (that face wears nothing).
+    bool setFaces(std::span<const FaceDrawing> faces) noexcept;
 
     /// Changes the options for the next draws (head.proxySquareness excepted: the proxy mesh is
     /// made by the constructor).
@@ -92,27 +91,12 @@ public:
     const char* lastError() const noexcept { return lastError_; }
 
 private:
-    struct Face {
-        vision::TrackedFace face;
-        vision::HeadPose pose;
-        bool hasPose = false;
-    };
-    struct Selection {
-        int faceId = 0;  ///< 0 = unused slot
-        int overlay = -1;
-        float alpha = 1.f;
-        float brightness = 1.f;
-    };
     struct Gl;  // GL objects; defined in the source so this header needs no GL header
-
-    Selection* selection(int faceId) noexcept;  ///< finds or makes the slot; null when full
-    bool present(int faceId) const noexcept;
 
     std::unique_ptr<Gl> gl_;
     FaceOverlayOptions options_;
-    std::array<Face, kMaxFaces> faces_{};
+    std::array<FaceDrawing, kMaxFaces> faces_{};
     int faceCount_ = 0;
-    std::array<Selection, kMaxFaces * 2> selections_{};
     char lastError_[128] = "";
 };
 
