@@ -1,6 +1,7 @@
 #include "render/face_debug_layer.hpp"
 
 #include "gl_program.hpp"
+#include "vision/geometry.hpp"
 
 #include <algorithm>
 #include <array>
@@ -130,7 +131,7 @@ void FaceDebugLayer::draw(const LayerContext& context) noexcept
     for (int i = 0; i < gl_->count; ++i) {
         const vision::TrackedFace& f = gl_->faces[static_cast<std::size_t>(i)].face;
         // §4: the box and the axis turned by the roll (clockwise on screen for positive).
-        const float r = f.rollDegrees * 3.14159265f / 180.f;
+        const float r = vision::toRadians(f.rollDegrees);
         const float c = std::cos(r), s = std::sin(r), h = 0.5f * f.size;
         auto at = [&](float u, float v) {
             return vision::Point2f{f.centre.x + c * u - s * v, f.centre.y + s * u + c * v};

@@ -1,5 +1,7 @@
 #include "render/head_model.hpp"
 
+#include "vision/geometry.hpp"
+
 #include <algorithm>
 #include <cmath>
 
@@ -7,7 +9,6 @@ namespace render {
 
 namespace {
 
-constexpr float kDegrees = 3.14159265358979f / 180.f;
 // 224 triangles: llvmpipe's cost is per triangle, and the silhouette stays within 2 % of the
 // head's radius (1 - cos 11.25 degrees).
 constexpr int kProxySegments = 16;  // around the vertical axis
@@ -23,8 +24,8 @@ std::vector<float> unitProxyTriangles(float n)
     std::vector<float> out;
     auto superPower = [n](float c) { return std::copysign(std::pow(std::fabs(c), 2.f / n), c); };
     auto point = [&](int ring, int segment) {
-        const float theta = static_cast<float>(ring) * 180.f / kProxyRings * kDegrees;
-        const float phi = static_cast<float>(segment) * 360.f / kProxySegments * kDegrees;
+        const float theta = vision::toRadians(static_cast<float>(ring) * 180.f / kProxyRings);
+        const float phi = vision::toRadians(static_cast<float>(segment) * 360.f / kProxySegments);
         out.push_back(std::sin(theta) * superPower(std::cos(phi)));
         out.push_back(std::cos(theta));
         out.push_back(std::sin(theta) * superPower(std::sin(phi)));

@@ -1,12 +1,12 @@
 #include "overlay_placement.hpp"
 
+#include "vision/geometry.hpp"
+
 #include <Eigen/Geometry>
 
 namespace render::detail {
 
 namespace {
-
-constexpr float kDegrees = 3.14159265358979f / 180.f;
 
 const std::array<float, 3>& anchorPoint(const HeadModel& head, OverlayAnchor anchor) noexcept
 {
@@ -33,9 +33,11 @@ Affine modelToHead(const Overlay& overlay, const HeadModel& head)
         overlay.measure == HeadMeasure::Interocular ? w * head.interocularPerFaceWidth : w;
     const float s = overlay.scale * measure;
     const Eigen::Matrix3f rotation =
-        (Eigen::AngleAxisf(overlay.rotationDegrees[2] * kDegrees, Eigen::Vector3f::UnitZ()) *
-         Eigen::AngleAxisf(overlay.rotationDegrees[1] * kDegrees, Eigen::Vector3f::UnitY()) *
-         Eigen::AngleAxisf(overlay.rotationDegrees[0] * kDegrees, Eigen::Vector3f::UnitX()))
+        (Eigen::AngleAxisf(vision::toRadians(overlay.rotationDegrees[2]),
+                           Eigen::Vector3f::UnitZ()) *
+         Eigen::AngleAxisf(vision::toRadians(overlay.rotationDegrees[1]),
+                           Eigen::Vector3f::UnitY()) *
+         Eigen::AngleAxisf(vision::toRadians(overlay.rotationDegrees[0]), Eigen::Vector3f::UnitX()))
             .toRotationMatrix();
     const std::array<float, 3>& anchor = anchorPoint(head, overlay.anchor);
     return {s * modelToHeadAxes() * rotation,

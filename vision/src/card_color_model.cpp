@@ -7,17 +7,6 @@ namespace vision {
 
 namespace {
 
-Rect clipRect(Rect r, int width, int height) noexcept
-{
-    const int x0 = std::max(r.x, 0);
-    const int y0 = std::max(r.y, 0);
-    const int x1 = std::min(r.x + r.width, width);
-    const int y1 = std::min(r.y + r.height, height);
-    if (x1 <= x0 || y1 <= y0)
-        return {};
-    return {x0, y0, x1 - x0, y1 - y0};
-}
-
 bool planesValid(const ChromaticityPlanes& c) noexcept
 {
     return !c.r.empty() && !c.g.empty() && !c.b.empty() && c.r.size() == c.g.size() &&
@@ -84,7 +73,7 @@ bool trainColorModel(const ChromaticityPlanes& chroma, Rect region, float minSig
 {
     if (!planesValid(chroma))
         return false;
-    const Rect r = clipRect(region, chroma.r.width, chroma.r.height);
+    const Rect r = clipped(region, chroma.r.width, chroma.r.height);
     if (r.width <= 0 || r.height <= 0)
         return false;
     Moments m;
@@ -104,7 +93,7 @@ bool measureColorModel(const ChromaticityPlanes& chroma, const ConstImageView& m
 {
     if (!planesValid(chroma) || mask.empty() || mask.size() != chroma.r.size())
         return false;
-    const Rect r = clipRect(region, chroma.r.width, chroma.r.height);
+    const Rect r = clipped(region, chroma.r.width, chroma.r.height);
     if (r.width <= 0 || r.height <= 0)
         return false;
     step = std::max(step, 1);
@@ -149,7 +138,7 @@ void colorTest(const ChromaticityPlanes& chroma, const ColorBounds& bounds, Rect
 {
     if (!planesValid(chroma) || mask.empty() || mask.size() != chroma.r.size())
         return;
-    const Rect r = clipRect(region, chroma.r.width, chroma.r.height);
+    const Rect r = clipped(region, chroma.r.width, chroma.r.height);
     for (int y = r.y; y < r.y + r.height; ++y) {
         const std::uint8_t* pr = chroma.r.row(y);
         const std::uint8_t* pg = chroma.g.row(y);

@@ -52,6 +52,8 @@
 
 #include "vision/color_spaces.hpp"
 
+#include "vision/geometry.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <numbers>
@@ -71,8 +73,6 @@ constexpr ColorSpaceInfo kSpaces[kColorSpaceCount] = {
     {ColorSpace::GaussianDerivative, "derivative", 3, {"H", "Cl", "Cll"}, {false, true, true}},
     {ColorSpace::LogHue, "loghue", 1, {"H", "", ""}, {true, false, false}},
 };
-
-constexpr double kRadToDeg = 180.0 / std::numbers::pi;
 
 /// Hue of HSV/HLS (eqs. 5-6) in degrees, wrapped to [-180, 180).
 double hueDegrees(double r, double g, double b, double mx, double mn) noexcept
@@ -204,7 +204,7 @@ std::array<double, 3> logHue(double r, double g, double b) noexcept
     const double den = lr + lg - 2.0 * lb;
     double h;
     if (den != 0.0) {
-        h = std::atan(num / den) * kRadToDeg;
+        h = toDegrees(std::atan(num / den));
     } else {
         h = num > 0.0 ? 90.0 : (num < 0.0 ? -90.0 : 0.0);
     }

@@ -1,5 +1,7 @@
 #include "corner_flow.hpp"
 
+#include "vision/geometry.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <cstring>
@@ -103,8 +105,13 @@ void CornerFlow::follow(Track& t, StaticFaceRule& rule) noexcept
     const Point2f moved = model.apply(t.face.centre);
     const float shift = std::hypot(moved.x - t.face.centre.x, moved.y - t.face.centre.y);
     const auto pairs = static_cast<std::size_t>(m);
-    rule.addFlowStep(t.motion, {{from_.data(), pairs}, {to_.data(), pairs},
-                                {inliers_.data(), pairs}, model, t.face.age, survived, shift});
+    rule.addFlowStep(t.motion, {{from_.data(), pairs},
+                                {to_.data(), pairs},
+                                {inliers_.data(), pairs},
+                                model,
+                                t.face.age,
+                                survived,
+                                shift});
     t.face.centre = moved;
     move(t, model, m);
     t.face.confidence = std::min(1.f, survived);
@@ -118,7 +125,7 @@ void CornerFlow::move(Track& t, const MotionModel& model, int pairs) noexcept
         // scales come from corners on the background or hair.
         const float s = std::clamp(model.scale(), 0.95f, 1.05f);
         t.face.size *= s;
-        t.face.rollDegrees += model.roll() * kRadToDeg;
+        t.face.rollDegrees += toDegrees(model.roll());
         t.face.rollDegrees = std::clamp(t.face.rollDegrees, -60.f, 60.f);
     }
     // The corners that fit go on to the next frame.

@@ -8,15 +8,6 @@ namespace vision {
 
 namespace {
 
-Rect clip(Rect r, Size s) noexcept
-{
-    const int x0 = std::clamp(r.x, 0, s.width);
-    const int y0 = std::clamp(r.y, 0, s.height);
-    const int x1 = std::clamp(r.x + r.width, 0, s.width);
-    const int y1 = std::clamp(r.y + r.height, 0, s.height);
-    return {x0, y0, x1 - x0, y1 - y0};
-}
-
 FaceDetectorOptions scanOptions(const FaceTrackerOptions& o)
 {
     FaceDetectorOptions d = o.detector;
@@ -127,7 +118,7 @@ void FaceSearch::prepareMask(const Frame& frame) noexcept
     for (RecentArea& a : recent_) {
         if (a.expires < frame.frameIndex || a.box.width <= 0)
             continue;
-        const Rect r = clip(a.box, s);
+        const Rect r = clipped(a.box, s.width, s.height);
         for (int y = r.y; y < r.y + r.height; ++y)
             std::memset(mask_.view().row(y) + r.x, 255, static_cast<std::size_t>(r.width));
     }

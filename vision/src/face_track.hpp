@@ -11,8 +11,6 @@ namespace vision {
 
 constexpr int kMaxPoints = 64;  ///< corners kept per track
 constexpr int kMaxTracks = 32;  ///< hard cap on options.maxFaces
-constexpr float kRadToDeg = 57.29577951308232f;
-constexpr float kDegToRad = 1.f / kRadToDeg;
 /// Image-symmetry roll estimates less sure than this are not used (RollEstimate::confidence).
 constexpr float kMinImageRollConfidence = 0.15f;
 

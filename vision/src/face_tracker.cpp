@@ -32,20 +32,6 @@ namespace vision {
 
 namespace {
 
-float iou(Rect a, Rect b) noexcept
-{
-    const int x0 = std::max(a.x, b.x);
-    const int y0 = std::max(a.y, b.y);
-    const int x1 = std::min(a.x + a.width, b.x + b.width);
-    const int y1 = std::min(a.y + a.height, b.y + b.height);
-    if (x1 <= x0 || y1 <= y0)
-        return 0.f;
-    const float inter = static_cast<float>(x1 - x0) * static_cast<float>(y1 - y0);
-    const float uni = static_cast<float>(a.width) * static_cast<float>(a.height) +
-                      static_cast<float>(b.width) * static_cast<float>(b.height) - inter;
-    return uni > 0.f ? inter / uni : 0.f;
-}
-
 Point2f centreOf(Rect box) noexcept
 {
     return {static_cast<float>(box.x) + static_cast<float>(box.width) * 0.5f,

@@ -1,21 +1,21 @@
 #include "vision/head_pose.hpp"
 
+#include "vision/geometry.hpp"
+
 #include <cmath>
 
 namespace vision {
 
 float CameraModel::focalPixels() const noexcept
 {
-    constexpr float kDegrees = 3.14159265358979f / 180.f;
-    const float halfFov = 0.5f * verticalFovDegrees * kDegrees;
+    const float halfFov = toRadians(0.5f * verticalFovDegrees);
     return 0.5f * static_cast<float>(imageSize.height) / std::tan(halfFov);
 }
 
 HeadPose headPoseFromFace(const TrackedFace& face, const CameraModel& camera,
                           float faceWidthMetres) noexcept
 {
-    constexpr float kDegrees = 3.14159265358979f / 180.f;
-    const float roll = face.rollDegrees * kDegrees;
+    const float roll = toRadians(face.rollDegrees);
     const float c = std::cos(roll);
     const float s = std::sin(roll);
     HeadPose pose;

@@ -1,6 +1,7 @@
 #include "vision/roll_estimator.hpp"
 
 #include "golden_section.hpp"
+#include "vision/geometry.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -9,7 +10,6 @@ namespace vision {
 
 namespace {
 
-constexpr float kDegToRad = 3.14159265358979323846f / 180.f;
 constexpr int kMaxAngles = 721;      // candidate angles scored for the confidence
 constexpr int kMaxAxisOffsets = 21;  // 2 * 10 + 1 sideways axis positions
 
@@ -23,7 +23,7 @@ struct UprightPoints {
 void makeUpright(std::span<const Point2f> points, Point2f centre, float rollDegrees,
                  UprightPoints& out) noexcept
 {
-    const float a = rollDegrees * kDegToRad;
+    const float a = toRadians(rollDegrees);
     const float c = std::cos(a), s = std::sin(a);
     out.n = static_cast<int>(std::min<std::size_t>(points.size(), kMaxRollPoints));
     for (int i = 0; i < out.n; ++i) {
@@ -177,7 +177,7 @@ RollEstimate estimateRollByLineFit(std::span<const Point2f> points) noexcept
     const double spread = std::sqrt((mu20 - mu02) * (mu20 - mu02) + 4.0 * mu11 * mu11);
     if (!(trace > 1e-12))
         return result;
-    double degrees = 0.5 * std::atan2(2.0 * mu11, mu20 - mu02) / kDegToRad;
+    double degrees = 0.5 * std::atan2(2.0 * mu11, mu20 - mu02) / kRadiansPerDegree;
     // A face's axes are only known up to a multiple of 90 degrees: fold into [-45, 45).
     degrees = degrees - 90.0 * std::floor((degrees + 45.0) / 90.0);
     result.rollDegrees = static_cast<float>(degrees);

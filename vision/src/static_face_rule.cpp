@@ -1,6 +1,7 @@
 #include "static_face_rule.hpp"
 
 #include "face_track.hpp"
+#include "vision/geometry.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -84,7 +85,7 @@ void StaticFaceRule::addFlowStep(FaceMotion& m, const FlowStep& step) const noex
     if (step.shift > kStillShift && asOne)
         m.path += step.shift;
     if (options_.mode != FaceTrackingMode::Translation && asOne)
-        m.turn += step.model.roll() * kRadToDeg;
+        m.turn += toDegrees(step.model.roll());
 }
 
 bool StaticFaceRule::movedAsOne(const FlowStep& step) noexcept

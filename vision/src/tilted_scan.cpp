@@ -1,5 +1,6 @@
 #include "tilted_scan.hpp"
 
+#include "vision/geometry.hpp"
 #include "vision/upright_patch.hpp"
 
 #include <algorithm>
@@ -26,8 +27,8 @@ constexpr float kTiltMinMaskFraction = 0.4f;
 /// The rotated image of a w x h image, turned by `degrees`, fits in this box (plus a margin).
 Size rotatedCanvas(Size s, float degrees) noexcept
 {
-    const float c = std::fabs(std::cos(degrees * kDegToRad));
-    const float n = std::fabs(std::sin(degrees * kDegToRad));
+    const float c = std::fabs(std::cos(toRadians(degrees)));
+    const float n = std::fabs(std::sin(toRadians(degrees)));
     const float w = static_cast<float>(s.width) * c + static_cast<float>(s.height) * n;
     const float h = static_cast<float>(s.width) * n + static_cast<float>(s.height) * c;
     return {static_cast<int>(std::ceil(w)) + 16, static_cast<int>(std::ceil(h)) + 16};
@@ -136,8 +137,8 @@ bool TiltedScan::chooseRegion(const Frame& frame) noexcept
     const float bh = static_cast<float>(y1 - y0) + 2.f * margin;
     angle_ = nextSign_ * options_.tiltScanDegrees;
     nextSign_ = -nextSign_;
-    const float c = std::fabs(std::cos(angle_ * kDegToRad));
-    const float n = std::fabs(std::sin(angle_ * kDegToRad));
+    const float c = std::fabs(std::cos(toRadians(angle_)));
+    const float n = std::fabs(std::sin(toRadians(angle_)));
     const Size canvas = gray_.view().size();
     size_ = {std::min(canvas.width, static_cast<int>(bw * c + bh * n + 0.5f)),
              std::min(canvas.height, static_cast<int>(bw * n + bh * c + 0.5f))};
@@ -183,7 +184,7 @@ long TiltedScan::step(const Frame& frame, long budget) noexcept
 
 TiltedScan::Turn TiltedScan::turn() const noexcept
 {
-    return {std::cos(angle_ * kDegToRad), std::sin(angle_ * kDegToRad),
+    return {std::cos(toRadians(angle_)), std::sin(toRadians(angle_)),
             0.5f * static_cast<float>(size_.width), 0.5f * static_cast<float>(size_.height)};
 }
 
@@ -201,8 +202,8 @@ int TiltedScan::excludeTracks(std::span<const Track> tracks) noexcept
         const float v = -r.n * dx + r.c * dy + r.hh;
         const float half = 0.5f * f.size;
         excluded_[static_cast<std::size_t>(count++)] = {
-            static_cast<int>(u - half), static_cast<int>(v - half),
-            static_cast<int>(f.size + 0.5f), static_cast<int>(f.size + 0.5f)};
+            static_cast<int>(u - half), static_cast<int>(v - half), static_cast<int>(f.size + 0.5f),
+            static_cast<int>(f.size + 0.5f)};
     }
     return count;
 }
@@ -228,8 +229,8 @@ void TiltedScan::collectHits() noexcept
             y + half > static_cast<float>(s.height))
             continue;
         hitRolls_[static_cast<std::size_t>(count_)] = angle_;
-        hits_[static_cast<std::size_t>(count_++)] = {
-            static_cast<int>(x - half + 0.5f), static_cast<int>(y - half + 0.5f), side, side};
+        hits_[static_cast<std::size_t>(count_++)] = {static_cast<int>(x - half + 0.5f),
+                                                     static_cast<int>(y - half + 0.5f), side, side};
     }
 }
 

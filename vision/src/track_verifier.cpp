@@ -1,5 +1,6 @@
 #include "track_verifier.hpp"
 
+#include "vision/geometry.hpp"
 #include "vision/upright_patch.hpp"
 
 #include <cmath>
@@ -116,8 +117,8 @@ void TrackVerifier::reanchor(const ConstImageView& gray, Track& t, const Rect& b
     // Patch offset back to the image: rotate by the roll used for warping.
     const float px = (static_cast<float>(b.x) + static_cast<float>(b.width) * 0.5f - half) * unit;
     const float py = (static_cast<float>(b.y) + static_cast<float>(b.height) * 0.5f - half) * unit;
-    const float c = std::cos(roll / kRadToDeg);
-    const float s = std::sin(roll / kRadToDeg);
+    const float c = std::cos(roll / kDegreesPerRadian);
+    const float s = std::sin(roll / kDegreesPerRadian);
     t.face.centre.x += 0.8f * (c * px - s * py);
     t.face.centre.y += 0.8f * (s * px + c * py);
     t.face.size += 0.8f * (size - t.face.size);

@@ -2,6 +2,8 @@
 
 #include "vision/upright_patch.hpp"
 
+#include "vision/geometry.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -10,7 +12,6 @@ namespace vision {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr int kPosShift = 16;  // source positions in Q16
 constexpr float kLimit = 16384.0f;
 
@@ -36,7 +37,7 @@ bool warpRotated(const ConstImageView& gray, Point2f centre, float rollDegrees, 
         !std::isfinite(rollDegrees) || !std::isfinite(centre.x) || !std::isfinite(centre.y)) {
         return false;
     }
-    const double rad = static_cast<double>(rollDegrees) * kPi / 180.0;
+    const double rad = toRadians(static_cast<double>(rollDegrees));
     const double c = std::cos(rad);
     const double s = std::sin(rad);
     // One patch pixel is `unit` source pixels along the rotated axes.
