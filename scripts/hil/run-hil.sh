@@ -11,11 +11,12 @@ here=$(cd "$(dirname "$0")" && pwd)
 
 [ $# -ge 1 ] || { echo "usage: $0 BUILD_DIR" >&2; exit 2; }
 build=$(cd "$1" && pwd)
-# The machine's limits, in seconds of an idle reference host (a 2-core machine of this kind,
-# 2026-12-01: the mirror's start in calibrate took HIL_CALIBRATION_REF_MS there): the guest
-# measures how much slower this host runs it (calibrate in guest-test.sh, "HIL CALIBRATION ...
-# scale_pct=N", at most HIL_SCALE_MAX_PCT) and the whole run's limit, HIL_TIMEOUT, is stretched
-# by the same factor once that line is in. Before it, the boot and the calibration get
+# The machine's limits, in seconds of an idle reference host: the guest measures how much slower
+# this host runs it (calibrate in guest-test.sh, "HIL CALIBRATION ... scale_pct=N", at most
+# HIL_SCALE_MAX_PCT) and the whole run's limit, HIL_TIMEOUT, is stretched by the same factor
+# once that line is in. HIL_CALIBRATION_REF_MS is set below what an idle 2-core machine of this
+# kind took on 2026-12-01 (20.8 s), so even an idle host's deadlines are stretched a little
+# (x1.4), and one loaded by a parallel build measured 46 s (capped at x4). Before it, the boot and the calibration get
 # boot_limit_s. timeout_max_s is the hard stop whatever the calibration says (ctest's TIMEOUT in
 # hil.cmake is above it).
 timeout_s=${HIL_TIMEOUT:-400}
