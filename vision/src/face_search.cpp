@@ -88,7 +88,8 @@ int FaceSearch::detect(const Frame& frame, std::span<const Rect> exclude) noexce
 {
     const bool haveMotion = frame.motion != nullptr;
     if (options_.detectionWindowBudget > 0) {
-        // The scan spread over frames: a result only when a scan completes.
+        // The scan spread over frames (a result only when a scan completes), so that no frame
+        // stalls on detection.
         done_ = detector_.detectMaskedIncremental(frame.gray, haveMotion ? &maskIntegral_ : nullptr,
                                                   options_.minMaskFraction, exclude, budget_);
         return done_ ? static_cast<int>(detector_.faces().size()) : 0;

@@ -406,6 +406,9 @@ bool FaceTracker::Impl::keeps(Track& t) noexcept
         t.face.state = FaceState::Confirmed;
     } else if (t.face.misses > options.graceFrames &&
                (!t.heldByCorners || t.face.misses > options.occludedGraceFrames)) {
+        // Beyond fig. 89: a shown face the detector misses while its corners still move together
+        // is covered, not gone (a hand or another head in front of it, the head turned): it
+        // keeps its place for occludedGraceFrames misses.
         keep = false;
     } else {
         t.face.state = FaceState::Missing;

@@ -14,7 +14,9 @@
 // that moved nearly all of its corners count), a box full of motion, or (not yet shown) a turn
 // in place by a few degrees that the image's symmetry agrees with. A photo
 // does none of these: its mask fraction stays at a few percent (lighting changes can raise it,
-// hence the high threshold), and a passer-by drags only the corners nearest to it.
+// hence the high threshold), and a passer-by drags only the corners nearest to it. A Tentative
+// face is confirmed only if it moved within the last confirmMotionFrames frames (and dropped if
+// it has not after twice that); a shown face still for staticDropFrames frames is dropped.
 
 namespace vision {
 

@@ -10,7 +10,10 @@
 // within about +-15 degrees of upright, and a tracked face keeps its roll by its corners, but a
 // face that comes into view tilted further is never detected. The moving regions no track covers
 // are therefore also scanned turned by the tilt angle, as the dissertation's verification turns a
-// tracked face upright by its roll.
+// tracked face upright by its roll. The two angles (+-tiltScanDegrees) alternate, one per
+// scan; a tilted scan gets only what the upright scan left of detectionWindowBudget (and at
+// most tiltWindowBudget of it) and continues on the next frames; a hit there starts a track with
+// that roll, refined from the image.
 
 namespace vision {
 

@@ -72,6 +72,8 @@ bool TrackVerifier::verifyAt(const ConstImageView& gray, Track& t, float roll,
     const float side = t.face.size * kVerifyContext;
     if (!warpUpright(gray, t.face.centre, roll, side, patch_.view()))
         return false;
+    // Every reanchorEvery verified frames a grouped scan of the patch instead of first hit
+    // re-centres and re-sizes the track from it: the corners alone let its scale drift.
     const bool reanchoring =
         options_.reanchorEvery > 0 && t.verifiedSinceAnchor + 1 >= options_.reanchorEvery;
     if (!reanchoring) {

@@ -73,57 +73,31 @@ struct FaceTrackerOptions {
     Size imageSize{360, 240};        ///< working image (grey) the tracker is given every frame
     FaceDetectorOptions detector{};  ///< maxFrameSize is set to imageSize by the tracker
     FaceTrackingMode mode = FaceTrackingMode::Similarity;
-    bool useMotionMask = true;     ///< scan only where the motion mask (or a recent face) is
-    float minMaskFraction = 0.1f;  ///< a window needs this fraction of mask pixels
-    int recentFaceFrames = 30;     ///< a dropped face's area stays scannable this long
-    /// Detector windows per frame (0 = whole scan every frame). A bigger scan continues on the
-    /// next frames, so no frame stalls on detection.
-    long detectionWindowBudget = 0;
-    int confirmFrames = 2;  ///< n: detections in a row before a face is shown
-    int graceFrames = 5;    ///< m: misses in a row before a track is dropped
-    /// Beyond fig. 89: a shown face the detector misses while its corners still move together
-    /// (most survive each flow step) is covered, not gone: a hand or another head in front of
-    /// part of it, or the head turned. It keeps its place for this many misses in a row
-    /// (at least graceFrames) before it is dropped.
-    int occludedGraceFrames = 30;
-    int maxFaces = 8;                         ///< tracks at most
-    int maxCornersPerFace = 40;               ///< corners found in a new box
-    int minCornersPerFace = 12;               ///< replenish when fewer survive
+    bool useMotionMask = true;       ///< scan only where the motion mask (or a recent face) is
+    float minMaskFraction = 0.1f;    ///< a window needs this fraction of mask pixels
+    int recentFaceFrames = 30;       ///< a dropped face's area stays scannable this long
+    long detectionWindowBudget = 0;  ///< detector windows per frame; 0: whole scans
+    int confirmFrames = 2;           ///< n: detections in a row before a face is shown
+    int graceFrames = 5;             ///< m: misses in a row before a track is dropped
+    int occludedGraceFrames = 30;    ///< misses while its corners still hold it (>= graceFrames)
+    int maxFaces = 8;                ///< tracks at most
+    int maxCornersPerFace = 40;      ///< corners found in a new box
+    int minCornersPerFace = 12;      ///< replenish when fewer survive
     float cornerMinDistanceFraction = 0.05f;  ///< corner spacing as a fraction of the face size
     OpticalFlowOptions flow{};
-    MotionFitOptions fit{};  ///< kind follows `mode`
-    /// Upright patch side for verification (the face is warped to ~patch / 1.6).
-    int verifyPatchSize = 48;
-    /// A detection and a track are the same face when their boxes overlap by at least this IoU.
-    float matchIou = 0.3f;
+    MotionFitOptions fit{};    ///< kind follows `mode`
+    int verifyPatchSize = 48;  ///< upright verification patch side (the face ~ patch / 1.6)
+    float matchIou = 0.3f;     ///< a detection is a track's face at this IoU or more
     bool initialRollBySymmetry = true;  ///< §4; otherwise new faces start at roll 0
-    /// Roll from the dense symmetry of the face image (RollByImageSymmetry) for new faces and,
-    /// at each re-anchoring, to correct the tracked roll; false: corner point symmetry only.
-    bool rollByImageSymmetry = true;
-    /// Faces that never move are dropped (posters, photos; with a motion mask only): a face
-    /// moves when its centre leaves the place it last moved from by minFaceMoveFraction of its
-    /// size (at least 1 px), when minFaceMotionFraction of the inner half of its box is
-    /// foreground, or (not yet shown) when it turns in place and its image agrees. A Tentative
-    /// face is confirmed only if it moved within the last confirmMotionFrames frames (and is
-    /// dropped if it has not after twice that); a shown face still for staticDropFrames frames
-    /// is dropped.
-    float minFaceMoveFraction = 0.015f;
-    float minFaceMotionFraction = 0.6f;
-    int confirmMotionFrames = 30;
-    int staticDropFrames = 9000;
-    /// Faces that enter tilted beyond the upright cascade's reach (about +-15 degrees): the
-    /// moving regions no track covers are also scanned turned by +tiltScanDegrees and
-    /// -tiltScanDegrees (one angle per scan, alternating), within what the upright scan left of
-    /// the window budget; a hit there starts a track with that roll (refined from the image).
-    /// 0: upright scans only.
-    float tiltScanDegrees = 25.f;
-    /// Tilted-scan windows per frame at most (0 = no limit of its own); a longer tilted scan
-    /// continues on the next frames. Tilted scans share detectionWindowBudget too: they get only
-    /// what the upright scan left of it.
-    long tiltWindowBudget = 4000;
-    /// Every this many verified frames, verification runs a grouped scan of the upright patch
-    /// instead of first hit and re-centres / re-sizes the track from it (stops scale drift).
-    int reanchorEvery = 5;
+    bool rollByImageSymmetry = true;    ///< roll by the image's symmetry, new and re-anchored faces
+    // Faces that never move are dropped (StaticFaceRule, with a motion mask only):
+    float minFaceMoveFraction = 0.015f;  ///< a move: the centre shifts this x its size (>= 1 px)
+    float minFaceMotionFraction = 0.6f;  ///< or this much of its inner box is foreground
+    int confirmMotionFrames = 30;        ///< shown only if it moved this recently
+    int staticDropFrames = 9000;         ///< a shown face still this long is dropped
+    float tiltScanDegrees = 25.f;  ///< TiltedScan's angle (+- alternately); 0: upright scans only
+    long tiltWindowBudget = 4000;  ///< tilted windows per frame at most (0: no limit of its own)
+    int reanchorEvery = 5;         ///< verified frames between re-anchoring grouped scans
 };
 
 class FaceTracker {
