@@ -1,5 +1,34 @@
 // RollByImageSymmetry: coarse-to-fine search for the angle at which the face patch best matches
 // its own mirror image and its features lie along the rows.
+//
+// How the defaults (RollByImageSymmetryOptions) were chosen. They were developed on the IMM faces
+// rotated synthetically (tests/peer/roll_image_symmetry_peer_test.cpp: about 1.2 degrees mean
+// error, every face within 5). IMM does not tell the last knobs apart, so patch 40 (rather than
+// 32), axis offset 0.15 (the detector's boxes sit ~0.1 of their side off the face centre) and
+// gradient saturation 8 were picked on `mirror-eval roll` with seeds 7 and 11, and blurPasses 2
+// and rowCoherenceWeight 0.5 with seeds 7, 11 and 42 (checked on 3, 99, 123, 500), never on the
+// reported 2006/2007.
+//  - supersample: large faces would alias into the small patch without it.
+//  - blurPasses 2 rather than 1 (with the row cue): CMU/MIT set A 3.55 -> 3.27 deg mean error
+//    over seeds 7, 11, 42, 3, 99, 123, 500 (B 3.49 -> 3.50); IMM unchanged; FGNet tracking roll
+//    +0.1 deg.
+//  - The mirror axis is searched in half-pixel steps, then continuously (golden section).
+//  - The compared region keeps to the face, not the background at the patch's corners.
+//  - gradientSaturation: one strong edge (hair against a wall, a collar) must not outweigh the
+//    eyes, nose and mouth.
+//  - axisWeightSigma: weighting the middle of the face (nose, mouth, inner eyes) over its outline
+//    made CMU/MIT set A worse with saturation on (0.2: 3.7 -> 4.3 deg), so it is off.
+//  - The row cue, the row coherence of the vertical derivatives (1 when, along every row of the
+//    compared region, they share their sign: the brows, eyes, nostrils and mouth lie along the
+//    rows), scores each angle as asymmetry + weight x (1 - coherence). Symmetry alone drifts on
+//    faces whose halves differ (a turned head, one-sided light, hair); the rows do not care about
+//    left and right. The weight was picked on CMU/MIT seeds 7, 11, 42 among 0.3-1.0 (0.4-0.6
+//    alike; 1.0 lets the rows win on their own).
+//  - The row cue joins only when the symmetry alone is less sure than rowCueBelowConfidence (its
+//    confidence: 1 - best / median asymmetry of the coarse scan). On a clear face it would only
+//    add its own bias, the eye line not being square to the eye-mouth axis on every face: always
+//    on, the FGNet tracking roll error went 2.45 -> 3.08 deg; gated at 0.3, 2.57, while CMU/MIT
+//    kept its gain (0.2 lost some on set A, 0.25-0.4 alike).
 
 #include "vision/roll_by_image_symmetry.hpp"
 

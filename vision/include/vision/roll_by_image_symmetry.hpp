@@ -26,64 +26,26 @@ enum class SymmetryFeature {
     Intensity,
 };
 
-/// Knobs of RollByImageSymmetry. Developed on the IMM faces rotated synthetically
-/// (tests/peer/roll_image_symmetry_peer_test.cpp: about 1.2 degrees mean error, every face within
-/// 5). IMM does not tell the last knobs apart, so patch 40 (rather than 32), axis offset 0.15
-/// (the detector's boxes sit ~0.1 of their side off the face centre) and gradient saturation 8
-/// were picked on `mirror-eval roll` with seeds 7 and 11, and blurPasses 2 and
-/// rowCoherenceWeight 0.5 with seeds 7, 11 and 42 (checked on 3, 99, 123, 500), never on the
-/// reported 2006/2007.
+/// Knobs of RollByImageSymmetry; how the defaults were chosen is in roll_by_image_symmetry.cpp.
+/// Sizes and positions are fractions of the patch side unless they say otherwise.
 struct RollByImageSymmetryOptions {
-    /// Side of the comparison patch in pixels (the face square is resampled to it).
-    int patchSize = 40;
-    /// The face square warped into the patch, as a multiple of the detector's box side.
-    float boxScale = 1.1f;
-    /// The square is sampled at up to supersample x patchSize (no finer than its own pixels) and
-    /// box-averaged down, so large faces do not alias into the small patch.
-    int supersample = 2;
-    /// Separable [1 2 1] smoothing passes over the patch before the comparison. 2 rather than 1
-    /// (with the row cue): CMU/MIT set A 3.55 -> 3.27 deg mean error over seeds 7, 11, 42, 3,
-    /// 99, 123, 500 (B 3.49 -> 3.50); IMM unchanged; FGNet tracking roll +0.1 deg.
-    int blurPasses = 2;
+    int patchSize = 40;     ///< side of the comparison patch in pixels
+    float boxScale = 1.1f;  ///< the face square warped into it, x the detector box's side
+    int supersample = 2;    ///< sampled at up to this x patchSize, then box-averaged down
+    int blurPasses = 2;     ///< [1 2 1] smoothing passes before the comparison
     SymmetryFeature feature = SymmetryFeature::Gradient;
-    /// Candidate angles: a coarse scan of [minDegrees, maxDegrees] in coarseStepDegrees, then a
-    /// golden-section search around the best coarse angle down to refineToleranceDegrees (0: no
-    /// refinement).
-    float minDegrees = -35.f;
-    float maxDegrees = 35.f;
-    float coarseStepDegrees = 2.5f;
-    float refineToleranceDegrees = 0.05f;
-    /// The mirror axis may sit up to this fraction of the patch side left or right of the patch
-    /// centre, searched in half-pixel steps, then continuously (golden section).
-    float maxAxisOffsetFraction = 0.15f;
-    /// Compared region: columns within this fraction of the patch side either side of the axis
-    /// (the face, not the background at the corners), rows from regionTop to regionBottom (as
-    /// fractions of the patch side).
-    float regionHalfWidthFraction = 0.34f;
-    float regionTop = 0.1f;
-    float regionBottom = 0.95f;
-    /// Gradient feature only: each gradient component g becomes g / (1 + |g| / saturation)
-    /// (grey levels per pixel), so one strong edge (hair against a wall, a collar) cannot outweigh
-    /// the eyes, nose and mouth. 0: linear.
-    float gradientSaturation = 8.f;
-    /// Pairs are weighted by a Gaussian of their distance from the axis with this sigma (fraction
-    /// of the patch side): the middle of the face (nose, mouth, inner eyes) counts more than its
-    /// outline. 0: uniform (with saturation on, 0.2 made CMU/MIT set A worse: 3.7 -> 4.3 deg).
-    float axisWeightSigma = 0.f;
-    /// Gradient feature only: weight of the second cue, the row coherence of the vertical
-    /// derivatives (1 when, along every row of the compared region, they share their sign: the
-    /// brows, eyes, nostrils and mouth lie along the rows). Each angle then scores asymmetry +
-    /// weight x (1 - coherence). Symmetry alone drifts on faces whose halves differ (a turned
-    /// head, one-sided light, hair); the rows do not care about left and right. 0: symmetry
-    /// only. Picked on CMU/MIT seeds 7, 11, 42 among 0.3-1.0 (0.4-0.6 alike; 1.0 lets the rows
-    /// win on their own).
-    float rowCoherenceWeight = 0.5f;
-    /// The row cue joins only when the symmetry alone is less sure than this (its confidence:
-    /// 1 - best / median asymmetry of the coarse scan). On a clear face it would only add its
-    /// own bias, the eye line not being square to the eye-mouth axis on every face: always on,
-    /// the FGNet tracking roll error went 2.45 -> 3.08 deg; gated at 0.3, 2.57, while CMU/MIT
-    /// kept its gain (0.2 lost some on set A, 0.25-0.4 alike). <= 0: never; > 1: always.
-    float rowCueBelowConfidence = 0.3f;
+    float minDegrees = -35.f;               ///< coarse scan of the angles from here ...
+    float maxDegrees = 35.f;                ///< ... to here
+    float coarseStepDegrees = 2.5f;         ///< in these steps
+    float refineToleranceDegrees = 0.05f;   ///< then golden section to this (0: no refinement)
+    float maxAxisOffsetFraction = 0.15f;    ///< the mirror axis may sit this far off centre
+    float regionHalfWidthFraction = 0.34f;  ///< compared columns either side of the axis
+    float regionTop = 0.1f;                 ///< compared rows from here ...
+    float regionBottom = 0.95f;             ///< ... to here
+    float gradientSaturation = 8.f;         ///< gradients g -> g / (1 + |g| / this); 0: linear
+    float axisWeightSigma = 0.f;         ///< Gaussian weight by distance from the axis; 0: uniform
+    float rowCoherenceWeight = 0.5f;     ///< weight of the row cue (0: symmetry only)
+    float rowCueBelowConfidence = 0.3f;  ///< the row cue joins below this confidence (<= 0 never)
 };
 
 /// Roll of a face by image symmetry. Construct once at start-up (the scratch patches are sized

@@ -29,33 +29,16 @@ struct RollEstimate {
 inline constexpr int kMaxRollPoints = 128;
 
 /// Knobs of estimateRollBySymmetry; the defaults are the ones measured on the IMM faces
-/// (tests/peer/roll_landmarks_peer_test.cpp).
+/// (tests/peer/roll_landmarks_peer_test.cpp; why each, in roll_estimator.cpp).
 struct RollEstimatorOptions {
-    /// Candidate angles: whole-step search in [minDegrees, maxDegrees] (the detector finds faces
-    /// up to ~20 degrees from vertical, so +-30 covers it).
-    float minDegrees = -30.f;
-    float maxDegrees = 30.f;
-    float stepDegrees = 1.f;
-    /// Sub-step refinement by golden-section search on [best - step, best + step] down to this
-    /// interval; 0 disables it (whole steps only, as in the dissertation).
-    float refineToleranceDegrees = 0.02f;
-    /// Fraction of the largest nearest-point distances dropped before averaging. Hair, collar and
-    /// background corners have no mirror partner; with the plain mean (0, the dissertation's) a
-    /// few of them decide the angle, trimmed they are not counted.
-    float trimFraction = 0.1f;
-    /// Each nearest distance is capped at this fraction of the box size before averaging (a
-    /// truncated mean), so an unmatched point costs a fixed penalty however far it lands.
-    /// Trimming, cap and axis offsets together halve the mean error on the rotated IMM faces
-    /// (about 5 -> 2.5 degrees, see the peer test). Weighting points by their distance from the
-    /// centre (the lever arm) was tried and made it worse (about 2.3 -> 3.1 degrees): the outer
-    /// points are the ones most often hair and background.
-    float capFraction = 0.06f;
-    /// The box centre need not lie on the face's axis (detectors are off by a few pixels, more for
-    /// rotated faces). The axis may also be shifted sideways by up to this fraction of the box
-    /// size, searched in `axisOffsetSteps` steps each side; 0 = axis through the centre only.
-    /// With boxes 5% off centre this matters most (about 6.6 -> 2.3 degrees mean error).
-    float maxAxisOffsetFraction = 0.06f;
-    int axisOffsetSteps = 3;
+    float minDegrees = -30.f;              ///< whole-step search of the angles from here ...
+    float maxDegrees = 30.f;               ///< ... to here
+    float stepDegrees = 1.f;               ///< in these steps
+    float refineToleranceDegrees = 0.02f;  ///< then golden section to this (0: whole steps)
+    float trimFraction = 0.1f;             ///< largest nearest-point distances dropped
+    float capFraction = 0.06f;             ///< each distance capped at this x the box size
+    float maxAxisOffsetFraction = 0.06f;   ///< the axis may sit this x the box size off centre
+    int axisOffsetSteps = 3;               ///< searched in this many steps each side
 };
 
 /// Symmetry score of `points` about the axis through `centre + offset * (cos a, sin a)` at angle
