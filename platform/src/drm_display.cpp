@@ -1,7 +1,3 @@
-// Built only with MIRROR_WITH_DRM (platform/cmake/devices.cmake adds libdrm's include path and
-// defines it).
-#ifdef MIRROR_WITH_DRM
-
 // GCC 12 at -O3 reports a false -Wrestrict inside libstdc++'s char_traits for `"literal" +
 // std::string` (GCC bug 105329); the message building below is start-up code, not a hot path.
 #if defined(__GNUC__) && !defined(__clang__) && __GNUC__ == 12
@@ -623,5 +619,3 @@ bool drmDisplayAvailable() noexcept
 }
 
 }  // namespace platform
-
-#endif  // MIRROR_WITH_DRM

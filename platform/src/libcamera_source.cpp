@@ -1,7 +1,3 @@
-// Built only with MIRROR_WITH_LIBCAMERA (platform/cmake/devices.cmake adds libcamera's include
-// path and defines it).
-#ifdef MIRROR_WITH_LIBCAMERA
-
 #include "platform/libcamera_source.hpp"
 
 #include "platform/camera_formats.hpp"
@@ -590,5 +586,3 @@ bool libcameraCameraAvailable() noexcept
 }
 
 }  // namespace platform
-
-#endif  // MIRROR_WITH_LIBCAMERA

@@ -1,6 +1,3 @@
-// Built only with MIRROR_WITH_X11 (platform/cmake/devices.cmake links libX11 and defines it).
-#ifdef MIRROR_WITH_X11
-
 #include "platform/window_display.hpp"
 
 #include "platform/egl_context.hpp"
@@ -270,5 +267,3 @@ bool windowDisplayAvailable() noexcept
 }
 
 }  // namespace platform
-
-#endif  // MIRROR_WITH_X11
