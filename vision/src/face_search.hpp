@@ -43,7 +43,6 @@ public:
     bool completed() const noexcept { return done_; }
     /// The faces of the last completed scan.
     std::span<const Rect> hits() const noexcept;
-    std::size_t capacity() const noexcept { return hits_.size(); }
     /// True when the last scan() was a cold start's (the whole image, whatever the budget).
     bool wasCold() const noexcept { return cold_; }
     /// Windows the last scan() left of the frame's budget (a large number when it has none).

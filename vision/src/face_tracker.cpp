@@ -97,7 +97,6 @@ struct FaceTracker::Impl {
     {
         tracks.resize(static_cast<std::size_t>(o.maxFaces));
         outFaces.resize(static_cast<std::size_t>(o.maxFaces));
-        outDetections.resize(search.capacity() + tilted.capacity());
     }
 
     bool process(const ConstImageView& gray, const ConstImageView& mask,
@@ -114,7 +113,6 @@ struct FaceTracker::Impl {
 
     void dropLostTracks() noexcept;
     long tiltBudget() const noexcept;
-    void collectDetections() noexcept;
     void match(Rect box, float rollHint) noexcept;
     void startTrack(Rect box, float rollHint) noexcept;
     float initialRoll(Track& t, float rollHint) noexcept;
@@ -141,8 +139,6 @@ struct FaceTracker::Impl {
     int frameIndex = 0;
 
     std::vector<TrackedFace> outFaces;
-    std::vector<Rect> outDetections;
-    int detectionCount = 0;
     long windows = 0;
 
     std::array<Point2f, kMaxPoints> rollPoints{};  ///< initialRoll's scratch
@@ -239,7 +235,6 @@ void FaceTracker::Impl::detectInSearchMask(const ConstImageView& mask) noexcept
     windows += search.scan({image(), mask, motion, live(), frameIndex});
     // Beyond fig. 89: the moving regions no track covers, turned, with what the budget left.
     windows += tilted.run({image(), search.mask(), search.maskIntegral(), live()}, tiltBudget());
-    collectDetections();
 }
 
 long FaceTracker::Impl::tiltBudget() const noexcept
@@ -251,15 +246,6 @@ long FaceTracker::Impl::tiltBudget() const noexcept
     const long own = options.tiltWindowBudget > 0 && !search.wasCold() ? options.tiltWindowBudget
                                                                        : TiltedScan::kUnlimited;
     return std::min(own, search.windowsLeft());
-}
-
-void FaceTracker::Impl::collectDetections() noexcept
-{
-    detectionCount = 0;
-    for (const Rect& b : search.hits())
-        outDetections[static_cast<std::size_t>(detectionCount++)] = b;
-    for (const Rect& b : tilted.hits())
-        outDetections[static_cast<std::size_t>(detectionCount++)] = b;
 }
 
 void FaceTracker::Impl::keepOrAddDetected() noexcept
@@ -472,15 +458,6 @@ std::span<const TrackedFace> FaceTracker::faces() const noexcept
     return {impl_->outFaces.data(), static_cast<std::size_t>(impl_->trackCount)};
 }
 
-std::span<const Rect> FaceTracker::detections() const noexcept
-{
-    return {impl_->outDetections.data(), static_cast<std::size_t>(impl_->detectionCount)};
-}
-
-bool FaceTracker::scanCompleted() const noexcept
-{
-    return impl_->search.completed();
-}
 long FaceTracker::windowsEvaluated() const noexcept
 {
     return impl_->windows;
@@ -490,7 +467,6 @@ void FaceTracker::reset() noexcept
 {
     impl_->trackCount = 0;
     impl_->cornerFlow.reset();
-    impl_->detectionCount = 0;
     impl_->tilted.reset();
     impl_->search.reset();
 }

@@ -47,8 +47,6 @@ public:
     /// The faces of the last completed scans, as axis-aligned image boxes, and their angles.
     std::span<const Rect> hits() const noexcept;
     std::span<const float> hitRolls() const noexcept;
-    /// How many hits a frame can report at most (both angles may complete in one frame).
-    std::size_t capacity() const noexcept { return hits_.size(); }
     /// Forgets the scan in progress and the last hits.
     void reset() noexcept;
 

@@ -121,12 +121,6 @@ public:
 
     /// Live tracks, Tentative ones included (check shown()), oldest first.
     std::span<const TrackedFace> faces() const noexcept;
-    /// Detections of the last completed scans (working-image boxes, upright and tilted; a
-    /// tilted hit as the axis-aligned box of its size about its centre), for the HUD and
-    /// evaluation.
-    std::span<const Rect> detections() const noexcept;
-    /// True when the last process() completed a detector scan.
-    bool scanCompleted() const noexcept;
     /// Detector windows evaluated by the last process() (upright and tilted scans, and
     /// verification).
     long windowsEvaluated() const noexcept;
