@@ -205,7 +205,7 @@ int runRollEval(const RollEvalOptions& o, std::FILE* out, std::FILE* err)
         const vision::RollByImageSymmetryOptions& io = imageSymmetry.options();
 
         ErrorStats image{"image symmetry (primary)", {}};
-        ErrorStats symmetry{"corner symmetry (issue-4 tuned)", {}};
+        ErrorStats symmetry{"corner symmetry (tuned)", {}};
         ErrorStats dissertation{"corner symmetry, dissertation's", {}};
         ErrorStats lineFit{"line-fit baseline", {}};
         ErrorStats upright{"assume upright (0)", {}};
