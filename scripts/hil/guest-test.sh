@@ -537,7 +537,8 @@ calibrate() {
         --set display.height=120 --set console.stdin=false --set buttons.enabled=false \
         --set "state.dir=\"/tmp/hil-calibration\"" >"$R/calibration.log" 2>&1 </dev/null || rc=$?
     ms=$(($(now_ms) - t0))
-    local ref=${HIL_CALIBRATION_REF_MS:-15000} max=${HIL_SCALE_MAX_PCT:-400}
+    local ref=${HIL_CALIBRATION_REF_MS:?set by run-hil.sh}
+    local max=${HIL_SCALE_MAX_PCT:?set by run-hil.sh}
     HIL_SCALE_PCT=$((ms * 100 / ref))
     ((HIL_SCALE_PCT >= 100)) || HIL_SCALE_PCT=100
     ((HIL_SCALE_PCT <= max)) || HIL_SCALE_PCT=$max

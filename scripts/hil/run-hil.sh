@@ -14,11 +14,11 @@ build=$(cd "$1" && pwd)
 # The machine's limits, in seconds of an idle reference host: the guest measures how much slower
 # this host runs it (calibrate in guest-test.sh, "HIL CALIBRATION ... scale_pct=N", at most
 # HIL_SCALE_MAX_PCT) and the whole run's limit, HIL_TIMEOUT, is stretched by the same factor
-# once that line is in. HIL_CALIBRATION_REF_MS is set below what an idle 2-core machine of this
-# kind took on 2026-12-01 (20.8 s), so even an idle host's deadlines are stretched a little
-# (x1.4), and one loaded by a parallel build measured 46 s (capped at x4). Before it, the boot and the calibration get
-# boot_limit_s. timeout_max_s is the hard stop whatever the calibration says (ctest's TIMEOUT in
-# hil.cmake is above it).
+# once that line is in; before it, the boot and the calibration get boot_limit_s.
+# HIL_CALIBRATION_REF_MS is set below what an idle 2-core machine of this kind took on 2026-12-01
+# (20.8 s), so even an idle host's deadlines are stretched a little (x1.4); one loaded by a
+# parallel build measured 46 s (capped at x4). timeout_max_s is the hard stop whatever the
+# calibration says (ctest's TIMEOUT in hil.cmake is above it).
 timeout_s=${HIL_TIMEOUT:-400}
 calibration_ref_ms=${HIL_CALIBRATION_REF_MS:-15000}
 scale_max_pct=${HIL_SCALE_MAX_PCT:-400}
@@ -184,7 +184,7 @@ console_driver &
 driver=$!
 
 # The run's limit: boot_limit_s until the guest's calibration line, then timeout_s stretched by
-# its scale. Past it the machine is stopped (qemu_limit says so).
+# its scale. Past it the machine is stopped (stopped_at_limit says so).
 calibration= limit=$boot_limit_s stopped_at_limit=0
 while kill -0 $qemu 2>/dev/null; do
     if [ -z "$calibration" ]; then
