@@ -1,6 +1,7 @@
 #include "vision/chromaticity.hpp"
 
 #include "chromaticity_kernels.hpp"
+#include "simd.hpp"
 #include "vision/yuv.hpp"
 
 // Why the SIMD paths are exact (chromaticity_kernels.hpp has the arithmetic). Let c <= sum, s1 =
@@ -100,28 +101,6 @@ bool planeFits(const ImageView& plane, const ConstImageView& in) noexcept
            plane.height == in.height;
 }
 
-#if defined(__x86_64__)
-bool cpuHasSse41() noexcept
-{
-    static const bool has = __builtin_cpu_supports("sse4.1");
-    return has;
-}
-
-bool cpuHasAvx2() noexcept
-{
-    static const bool has = __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
-    return has;
-}
-
-bool cpuHasAvx512() noexcept
-{
-    static const bool has =
-        cpuHasAvx2() && __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512bw") &&
-        __builtin_cpu_supports("avx512vl") && __builtin_cpu_supports("avx512vbmi");
-    return has;
-}
-#endif
-
 ChromaticityPath resolve(ChromaticityPath path) noexcept
 {
     return path == ChromaticityPath::Best ? bestChromaticityPath() : path;
@@ -133,14 +112,8 @@ RowKernel rowKernel(ChromaticityPath path) noexcept
         case ChromaticityPath::Scalar:
             return chroma_detail::rowScalar;
 #if defined(__x86_64__)
-        case ChromaticityPath::Sse2:
-            return chroma_detail::rowSse2;
-        case ChromaticityPath::Sse41:
-            return cpuHasSse41() ? chroma_detail::rowSse41 : nullptr;
         case ChromaticityPath::Avx2:
-            return cpuHasAvx2() ? chroma_detail::rowAvx2 : nullptr;
-        case ChromaticityPath::Avx512:
-            return cpuHasAvx512() ? chroma_detail::rowAvx512 : nullptr;
+            return simd::hasAvx2() ? chroma_detail::rowAvx2 : nullptr;
 #endif
 #if defined(__aarch64__)
         case ChromaticityPath::Neon:
@@ -161,14 +134,8 @@ const char* chromaticityPathName(ChromaticityPath path) noexcept
     switch (path) {
         case ChromaticityPath::Scalar:
             return "scalar";
-        case ChromaticityPath::Sse2:
-            return "sse2";
-        case ChromaticityPath::Sse41:
-            return "sse4.1";
         case ChromaticityPath::Avx2:
             return "avx2";
-        case ChromaticityPath::Avx512:
-            return "avx512";
         case ChromaticityPath::Neon:
             return "neon";
         case ChromaticityPath::Best:
@@ -185,11 +152,7 @@ bool chromaticityPathAvailable(ChromaticityPath path) noexcept
 ChromaticityPath bestChromaticityPath() noexcept
 {
 #if defined(__x86_64__)
-    if (cpuHasAvx512())
-        return ChromaticityPath::Avx512;
-    if (cpuHasAvx2())
-        return ChromaticityPath::Avx2;
-    return cpuHasSse41() ? ChromaticityPath::Sse41 : ChromaticityPath::Sse2;
+    return simd::hasAvx2() ? ChromaticityPath::Avx2 : ChromaticityPath::Scalar;
 #elif defined(__aarch64__)
     return ChromaticityPath::Neon;
 #else
@@ -261,23 +224,10 @@ bool chromaticityQuotients(const ChromaticityTable& table, ChromaticityPath path
                 out[i] = table.row(sum[i])[c[i]];
             return true;
 #if defined(__x86_64__)
-        case ChromaticityPath::Sse2:
-            chroma_detail::quotientsSse2(c, sum, out, n);
-            return true;
-        case ChromaticityPath::Sse41:
-            if (!cpuHasSse41())
-                return false;
-            chroma_detail::quotientsSse41(c, sum, out, n);
-            return true;
         case ChromaticityPath::Avx2:
-            if (!cpuHasAvx2())
+            if (!simd::hasAvx2())
                 return false;
             chroma_detail::quotientsAvx2(c, sum, out, n);
-            return true;
-        case ChromaticityPath::Avx512:
-            if (!cpuHasAvx512())
-                return false;
-            chroma_detail::quotientsAvx512(c, sum, out, n);
             return true;
 #endif
 #if defined(__aarch64__)

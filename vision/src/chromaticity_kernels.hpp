@@ -6,10 +6,10 @@
 // i.e. round(255 c / sum) with halves up, 0 for sum 0 (the clamp only matters for inputs that no
 // real pixel produces, c > sum, and keeps the SIMD and table paths equal on every input).
 //
-// The SIMD kernels do not use the table (SSE, AVX and NEON have no byte gathers); per pixel, in
+// The SIMD kernels do not use the table (AVX2 and NEON have no byte gathers); per pixel, in
 // 16-bit lanes (proof in chromaticity.cpp):
 //   s1 = max(sum, 1)
-//   m  = min(trunc(65536 / s1), 65535)    reciprocal in float (rcp + one Newton step on x86)
+//   m  = min(trunc(65536 / s1), 65535)    reciprocal in float (rcp + one Newton step on AVX2)
 //   n  = 255 c + (sum >> 1)               < 2^16; round(255 c / sum) = floor(n / s1)
 //   q0 = (n m) >> 16                      u16 multiply-high; q0 is q or q - 1
 //   d  = n - s1 q0                        exact in wrapping 16-bit arithmetic (0 <= d < 2 s1)
@@ -41,18 +41,9 @@ inline std::uint8_t exactClamped(int c, int sum) noexcept
 }
 
 #if defined(__x86_64__)
-void rowSse2(const ChromaticityTable&, const std::uint8_t*, int, Packing, std::uint8_t*,
-             std::uint8_t*, std::uint8_t*) noexcept;
-void rowSse41(const ChromaticityTable&, const std::uint8_t*, int, Packing, std::uint8_t*,
-              std::uint8_t*, std::uint8_t*) noexcept;
-void quotientsSse2(const std::uint16_t*, const std::uint16_t*, std::uint8_t*, int) noexcept;
-void quotientsSse41(const std::uint16_t*, const std::uint16_t*, std::uint8_t*, int) noexcept;
 void rowAvx2(const ChromaticityTable&, const std::uint8_t*, int, Packing, std::uint8_t*,
              std::uint8_t*, std::uint8_t*) noexcept;
 void quotientsAvx2(const std::uint16_t*, const std::uint16_t*, std::uint8_t*, int) noexcept;
-void rowAvx512(const ChromaticityTable&, const std::uint8_t*, int, Packing, std::uint8_t*,
-               std::uint8_t*, std::uint8_t*) noexcept;
-void quotientsAvx512(const std::uint16_t*, const std::uint16_t*, std::uint8_t*, int) noexcept;
 #endif
 #if defined(__aarch64__)
 void rowNeon(const ChromaticityTable&, const std::uint8_t*, int, Packing, std::uint8_t*,

@@ -1,4 +1,4 @@
-// NEON chromaticity kernel (aarch64): the same arithmetic as the SSE kernels
+// NEON chromaticity kernel (aarch64): the same arithmetic as the AVX2 kernel
 // (chromaticity_kernels.hpp), with vld3/vld4 de-interleaving the pixels. The reciprocal uses the
 // IEEE division aarch64 has (correctly rounded), so m = trunc(65536 / s1) exactly.
 #if defined(__aarch64__)

@@ -1,11 +1,13 @@
 // Grey image pyramid (METHOD.md §3, tracking): 5-tap binomial reduction in integer arithmetic.
 #include "vision/image_pyramid.hpp"
 
+#include "simd.hpp"
+
 #include <algorithm>
 #include <stdexcept>
 #include <string>
 
-#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+#if defined(__x86_64__)
 #include <immintrin.h>
 #endif
 
@@ -25,45 +27,53 @@ inline int reflect101(int i, int n) noexcept
     return i;
 }
 
-// The filter is the hot loop of the frame's pyramid: on x86-64 also build an AVX2 copy, chosen at
-// load time (aarch64 has NEON as its baseline).
-#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
-#define MIRROR_PYR_CLONES __attribute__((target_clones("avx2", "default")))
-#else
-#define MIRROR_PYR_CLONES
-#endif
+// The filters are the hot loops of the frame's pyramid: the vertical one a plain loop the compiler
+// vectorises, the horizontal one hand-written for AVX2; on x86-64 the AVX2 builds are chosen by
+// simd::hasAvx2(), aarch64 runs its NEON baseline.
 
 /// Five source rows filtered vertically by [1 4 6 4 1] at full width (sums up to 16 * 255).
-MIRROR_PYR_CLONES void filterColumns(const std::uint8_t* r0, const std::uint8_t* r1,
-                                     const std::uint8_t* r2, const std::uint8_t* r3,
-                                     const std::uint8_t* r4, int w, std::uint16_t* out) noexcept
+MIRROR_SIMD_BODY void filterColumnsBody(const std::uint8_t* r0, const std::uint8_t* r1,
+                                        const std::uint8_t* r2, const std::uint8_t* r3,
+                                        const std::uint8_t* r4, int w, std::uint16_t* out) noexcept
 {
     for (int x = 0; x < w; ++x) {
         out[x] = static_cast<std::uint16_t>(r0[x] + r4[x] + 4 * (r1[x] + r3[x]) + 6 * r2[x]);
     }
 }
 
-#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
-#define MIRROR_PYR_AVX2 1
+#if defined(__x86_64__)
+MIRROR_AVX2 void filterColumnsAvx2(const std::uint8_t* r0, const std::uint8_t* r1,
+                                   const std::uint8_t* r2, const std::uint8_t* r3,
+                                   const std::uint8_t* r4, int w, std::uint16_t* out) noexcept
+{
+    filterColumnsBody(r0, r1, r2, r3, r4, w, out);
+}
+#endif
 
-const bool kHasAvx2 = [] {
-    __builtin_cpu_init();
-    return __builtin_cpu_supports("avx2") != 0;
-}();
+void filterColumns(const std::uint8_t* r0, const std::uint8_t* r1, const std::uint8_t* r2,
+                   const std::uint8_t* r3, const std::uint8_t* r4, int w,
+                   std::uint16_t* out) noexcept
+{
+#if defined(__x86_64__)
+    if (simd::hasAvx2())
+        return filterColumnsAvx2(r0, r1, r2, r3, r4, w, out);
+#endif
+    filterColumnsBody(r0, r1, r2, r3, r4, w, out);
+}
+
+#if defined(__x86_64__)
 
 /// Outputs x0, x0 + 1, ... of filterRowDown while 16 at a time fit (taps up to v[2x + 17] read):
 /// the stride-2 taps are the low and high halves of 32-bit lanes, weighted in multiply-adds
 /// (taps up to 16 * 255 are safe as signed 16-bit, sums up to 256 * 255). Returns the first
 /// output not written.
-__attribute__((target("avx2"))) int filterRowDownAvx2(const std::uint16_t* v, int w,
-                                                      std::uint8_t* out, int x0) noexcept
+MIRROR_AVX2 int filterRowDownAvx2(const std::uint16_t* v, int w, std::uint8_t* out, int x0) noexcept
 {
     const __m256i w14 = _mm256_set1_epi32(1 | (4 << 16));
     const __m256i w64 = _mm256_set1_epi32(6 | (4 << 16));
     const __m256i low = _mm256_set1_epi32(0xffff);
     const __m256i round = _mm256_set1_epi32(128);
-    const auto eight = [&](int x) __attribute__((target("avx2")))
-    {
+    const auto eight = [&](int x) MIRROR_AVX2 {
         const std::uint16_t* p = v + 2 * x;
         const __m256i l0 = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(p - 2));
         const __m256i l1 = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(p));
@@ -84,18 +94,15 @@ __attribute__((target("avx2"))) int filterRowDownAvx2(const std::uint16_t* v, in
     }
     return x;
 }
-#else
-#define MIRROR_PYR_AVX2 0
 #endif
 
 /// The vertically filtered row filtered horizontally, subsampled by 2, rounded to 8 bits.
-MIRROR_PYR_CLONES void filterRowDown(const std::uint16_t* v, int w, std::uint8_t* out,
-                                     int dw) noexcept
+void filterRowDown(const std::uint16_t* v, int w, std::uint8_t* out, int dw) noexcept
 {
     const int last = (w - 3) / 2;  // largest x with 2x + 2 <= w - 1: all taps inside
     int first = 1;
-#if MIRROR_PYR_AVX2
-    if (kHasAvx2) {
+#if defined(__x86_64__)
+    if (simd::hasAvx2()) {
         first = filterRowDownAvx2(v, w, out, 1);
     }
 #endif

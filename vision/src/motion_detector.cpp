@@ -1,5 +1,7 @@
 #include "vision/motion_detector.hpp"
 
+#include "simd.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
@@ -52,19 +54,13 @@ struct Params {
     int initVar, minVar, maxVar;  // q8
 };
 
-#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
-#define MIRROR_MOTION_CLONES __attribute__((target_clones("avx2", "default")))
-#else
-#define MIRROR_MOTION_CLONES
-#endif
-
 /// One row of the mixture update (see the header for the model): `src` holds grey values in q8,
 /// `out` receives 1 for foreground, 0 for background.
 /// Every pixel is independent and the body is branch-free (selects as arithmetic), so the
-/// compiler vectorises the loop over x after unrolling the loops over k. On x86-64 a second
-/// AVX2 clone is picked at load time: plain SSE2 has no 32-bit multiply.
+/// compiler vectorises the loop over x after unrolling the loops over k. On x86-64 it is also
+/// built for AVX2 (updateRow, below): plain SSE2 has no 32-bit multiply.
 template <int K>
-MIRROR_MOTION_CLONES void updateRow(const std::uint16_t* src, std::uint16_t* out,
+MIRROR_SIMD_BODY void updateRowBody(const std::uint16_t* src, std::uint16_t* out,
                                     std::uint16_t* planes, int width, std::ptrdiff_t n,
                                     const Params& p) noexcept
 {
@@ -155,6 +151,27 @@ MIRROR_MOTION_CLONES void updateRow(const std::uint16_t* src, std::uint16_t* out
             planes[(2 * K + k) * n + x] = static_cast<std::uint16_t>(v[k]);
         });
     }
+}
+
+// The path for this CPU (simd.hpp): the body built for AVX2 or for the baseline.
+#if defined(__x86_64__)
+template <int K>
+MIRROR_AVX2 void updateRowAvx2(const std::uint16_t* src, std::uint16_t* out, std::uint16_t* planes,
+                               int width, std::ptrdiff_t n, const Params& p) noexcept
+{
+    updateRowBody<K>(src, out, planes, width, n, p);
+}
+#endif
+
+template <int K>
+void updateRow(const std::uint16_t* src, std::uint16_t* out, std::uint16_t* planes, int width,
+               std::ptrdiff_t n, const Params& p) noexcept
+{
+#if defined(__x86_64__)
+    if (simd::hasAvx2())
+        return updateRowAvx2<K>(src, out, planes, width, n, p);
+#endif
+    updateRowBody<K>(src, out, planes, width, n, p);
 }
 
 }  // namespace

@@ -11,6 +11,8 @@
 
 #include "row_prefilter.hpp"
 
+#include "simd.hpp"
+
 #include <algorithm>
 
 namespace vision {
@@ -21,14 +23,8 @@ constexpr int kAliveDivisor = 4;
 
 // The kernels: one weak classifier over `n` consecutive windows, the decisions in float exactly
 // as OpenCV makes them (an integer feature sum below 2^24 is exact in float, the product rounded
-// once), the leaves summed in Q20. Plain loops the compiler vectorises; the one choice of code
-// path is here: on x86-64 each kernel is also built for AVX2 and chosen at load time (the
-// default clone is the x86-64 baseline), on aarch64 NEON is the baseline.
-#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
-#define MIRROR_VJ_CLONES __attribute__((target_clones("avx2", "default")))
-#else
-#define MIRROR_VJ_CLONES
-#endif
+// once), the leaves summed in Q20. Plain loops the compiler vectorises (NEON on aarch64); on
+// x86-64 each is also built for AVX2 and chosen by simd::hasAvx2() (below the bodies).
 
 // A feature's 12 corner pointers for the windows from `base` on, and its weights, as plain
 // locals: the compiler must see that the stage sums the kernels write do not move them.
@@ -58,9 +54,9 @@ constexpr int kAliveDivisor = 4;
     (MIRROR_VJ_FEATURE2(prefix, j) + \
      prefix##wc * (prefix##c0[j] - prefix##c1[j] - prefix##c2[j] + prefix##c3[j]))
 
-MIRROR_VJ_CLONES void rowStumpPass(const RowStump& st, const std::int32_t* base, bool split, int n,
-                                   const float* __restrict vnf,
-                                   std::int32_t* __restrict acc) noexcept
+MIRROR_SIMD_BODY void rowStumpPassBody(const RowStump& st, const std::int32_t* base, bool split,
+                                       int n, const float* __restrict vnf,
+                                       std::int32_t* __restrict acc) noexcept
 {
     const float thr = st.threshold;
     const std::int32_t left = st.left;
@@ -90,9 +86,9 @@ MIRROR_VJ_CLONES void rowStumpPass(const RowStump& st, const std::int32_t* base,
         acc[j] += toNode1 ? leaf1 : direct;                      \
     }
 
-MIRROR_VJ_CLONES void rowTreePass(const RowTree& t, const std::int32_t* base, bool split, int n,
-                                  const float* __restrict vnf,
-                                  std::int32_t* __restrict acc) noexcept
+MIRROR_SIMD_BODY void rowTreePassBody(const RowTree& t, const std::int32_t* base, bool split, int n,
+                                      const float* __restrict vnf,
+                                      std::int32_t* __restrict acc) noexcept
 {
     const float thr0 = t.threshold0;
     const float thr1 = t.threshold1;
@@ -122,9 +118,9 @@ MIRROR_VJ_CLONES void rowTreePass(const RowTree& t, const std::int32_t* base, bo
 // A stage's outcome for windows [0, n) of a row from their Q20 sums: those alive (result 1)
 // are rejected (-si), parked for the exact path from this stage (2, from = si) or stay alive.
 // Branch-free: which windows a stage rejects is data dependent. Returns how many stay alive.
-MIRROR_VJ_CLONES int settleStage(const std::int32_t* __restrict acc, int* __restrict result,
-                                 int* __restrict from, int n, int si, std::int32_t rowReject,
-                                 std::int32_t rowPass) noexcept
+MIRROR_SIMD_BODY int settleStageBody(const std::int32_t* __restrict acc, int* __restrict result,
+                                     int* __restrict from, int n, int si, std::int32_t rowReject,
+                                     std::int32_t rowPass) noexcept
 {
     int alive = 0;
     for (int j = 0; j < n; ++j) {
@@ -137,6 +133,57 @@ MIRROR_VJ_CLONES int settleStage(const std::int32_t* __restrict acc, int* __rest
         alive += live & !reject & !park;
     }
     return alive;
+}
+
+// The path for this CPU (simd.hpp): each kernel's body built for AVX2 or for the baseline.
+#if defined(__x86_64__)
+MIRROR_AVX2 void rowStumpPassAvx2(const RowStump& st, const std::int32_t* base, bool split, int n,
+                                  const float* __restrict vnf,
+                                  std::int32_t* __restrict acc) noexcept
+{
+    rowStumpPassBody(st, base, split, n, vnf, acc);
+}
+MIRROR_AVX2 void rowTreePassAvx2(const RowTree& t, const std::int32_t* base, bool split, int n,
+                                 const float* __restrict vnf, std::int32_t* __restrict acc) noexcept
+{
+    rowTreePassBody(t, base, split, n, vnf, acc);
+}
+MIRROR_AVX2 int settleStageAvx2(const std::int32_t* __restrict acc, int* __restrict result,
+                                int* __restrict from, int n, int si, std::int32_t rowReject,
+                                std::int32_t rowPass) noexcept
+{
+    return settleStageBody(acc, result, from, n, si, rowReject, rowPass);
+}
+#endif
+
+void rowStumpPass(const RowStump& st, const std::int32_t* base, bool split, int n,
+                  const float* __restrict vnf, std::int32_t* __restrict acc) noexcept
+{
+#if defined(__x86_64__)
+    if (simd::hasAvx2())
+        return rowStumpPassAvx2(st, base, split, n, vnf, acc);
+#endif
+    rowStumpPassBody(st, base, split, n, vnf, acc);
+}
+
+void rowTreePass(const RowTree& t, const std::int32_t* base, bool split, int n,
+                 const float* __restrict vnf, std::int32_t* __restrict acc) noexcept
+{
+#if defined(__x86_64__)
+    if (simd::hasAvx2())
+        return rowTreePassAvx2(t, base, split, n, vnf, acc);
+#endif
+    rowTreePassBody(t, base, split, n, vnf, acc);
+}
+
+int settleStage(const std::int32_t* __restrict acc, int* __restrict result, int* __restrict from,
+                int n, int si, std::int32_t rowReject, std::int32_t rowPass) noexcept
+{
+#if defined(__x86_64__)
+    if (simd::hasAvx2())
+        return settleStageAvx2(acc, result, from, n, si, rowReject, rowPass);
+#endif
+    return settleStageBody(acc, result, from, n, si, rowReject, rowPass);
 }
 
 }  // namespace

@@ -6,8 +6,9 @@
 //
 // Exactness: every output equals round(255 * c / (R+G+B)) with halves rounded up, and 0 when the
 // sum is 0 (the dissertation's Table 1 OpenCV code divides by 3 in 8 bits first and is off by up to
-// 255). The table loop below is the reference; the SIMD paths (SSE2, SSE4.1, AVX2, AVX-512, NEON;
-// ChromaticityPath) compute the same bytes arithmetically and are tested bit-exact against it.
+// 255). The table loop below is the reference; the SIMD paths (NEON on the product, AVX2 on an
+// x86-64 development machine; ChromaticityPath) compute the same bytes arithmetically and are
+// tested bit-exact against it.
 
 #include "vision/image.hpp"
 
@@ -47,12 +48,9 @@ struct ChromaticityPlanes {
 /// an exact integer correction instead of the table (proof in chromaticity.cpp).
 enum class ChromaticityPath : std::uint8_t {
     Scalar,  ///< the table look-up loop of §2 (dissertation 4.3), unrolled by 4: the reference
-    Sse2,    ///< x86-64 baseline
-    Sse41,   ///< x86-64 with SSE4.1 (byte shuffles de-interleave the pixels)
-    Avx2,    ///< x86-64 with AVX2 and FMA: the SSE4.1 arithmetic on 16 lanes
-    Avx512,  ///< x86-64 with AVX-512 BW, VL and VBMI: 32 lanes, byte permutes de-interleave
-    Neon,    ///< aarch64
-    Best,    ///< the fastest path this CPU supports
+    Avx2,    ///< x86-64 with AVX2: 32 pixels a step, byte shuffles de-interleave them
+    Neon,    ///< aarch64 (the product): 16 pixels a step, vld3/vld4 de-interleave them
+    Best,    ///< the fastest path this CPU supports (Scalar on x86-64 without AVX2)
 };
 
 const char* chromaticityPathName(ChromaticityPath path) noexcept;
