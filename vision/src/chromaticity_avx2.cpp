@@ -16,18 +16,6 @@ namespace vision::chroma_detail {
 
 namespace {
 
-/// The last pixels of a row, fewer than a step: one at a time, exactly as the table stores them.
-void tail(const std::uint8_t* p, int n, int step, int ri, int bi, std::uint8_t* r, std::uint8_t* g,
-          std::uint8_t* b) noexcept
-{
-    for (int x = 0; x < n; ++x, p += step) {
-        const int sum = p[0] + p[1] + p[2];
-        r[x] = exactClamped(p[ri], sum);
-        g[x] = exactClamped(p[1], sum);
-        b[x] = exactClamped(p[bi], sum);
-    }
-}
-
 /// pshufb masks gathering channel ch (byte ch of each 3-byte pixel) of 16 pixels from the k-th of
 /// three consecutive 16-byte loads; -128 (bit 7 set) clears the lanes other loads supply.
 struct GatherMasks {
@@ -190,7 +178,7 @@ MIRROR_AVX2 void rowAvx2(const ChromaticityTable&, const std::uint8_t* src, int 
             pixels32Avx2(_mm256_set_m128i(r1, r0), _mm256_set_m128i(g1, g0),
                          _mm256_set_m128i(b1, b0), r + x, g + x, b + x);
         }
-        tail(src + 4 * x, n - x, 4, 2, 0, r + x, g + x, b + x);
+        rowTail(src + 4 * x, n - x, 4, 2, 0, r + x, g + x, b + x);
         return;
     }
     const int ri = packing == Packing::Rgb24 ? 0 : 2, bi = 2 - ri;
@@ -216,7 +204,7 @@ MIRROR_AVX2 void rowAvx2(const ChromaticityTable&, const std::uint8_t* src, int 
         else
             pixels32Avx2(c2, c1, c0, r + x, g + x, b + x);
     }
-    tail(src + 3 * x, n - x, 3, ri, bi, r + x, g + x, b + x);
+    rowTail(src + 3 * x, n - x, 3, ri, bi, r + x, g + x, b + x);
 }
 
 }  // namespace vision::chroma_detail

@@ -40,6 +40,19 @@ inline std::uint8_t exactClamped(int c, int sum) noexcept
     return ChromaticityTable::exact(c <= sum ? c : sum, sum);
 }
 
+/// The last n pixels of a row, fewer than a SIMD step, one at a time exactly as the table stores
+/// them: `step` bytes a pixel, red at byte ri, green at 1, blue at bi.
+inline void rowTail(const std::uint8_t* p, int n, int step, int ri, int bi, std::uint8_t* r,
+                    std::uint8_t* g, std::uint8_t* b) noexcept
+{
+    for (int x = 0; x < n; ++x, p += step) {
+        const int sum = p[0] + p[1] + p[2];
+        r[x] = exactClamped(p[ri], sum);
+        g[x] = exactClamped(p[1], sum);
+        b[x] = exactClamped(p[bi], sum);
+    }
+}
+
 #if defined(__x86_64__)
 void rowAvx2(const ChromaticityTable&, const std::uint8_t*, int, Packing, std::uint8_t*,
              std::uint8_t*, std::uint8_t*) noexcept;

@@ -67,17 +67,6 @@ inline void pixels16(uint8x16_t rv, uint8x16_t gv, uint8x16_t bv, std::uint8_t* 
     vst1q_u8(b, vcombine_u8(vqmovn_u16(qb0), vqmovn_u16(qb1)));
 }
 
-void tail(const std::uint8_t* p, int n, int step, int ri, int bi, std::uint8_t* r, std::uint8_t* g,
-          std::uint8_t* b) noexcept
-{
-    for (int x = 0; x < n; ++x, p += step) {
-        const int sum = p[0] + p[1] + p[2];
-        r[x] = exactClamped(p[ri], sum);
-        g[x] = exactClamped(p[1], sum);
-        b[x] = exactClamped(p[bi], sum);
-    }
-}
-
 }  // namespace
 
 void quotientsNeon(const std::uint16_t* c, const std::uint16_t* sum, std::uint8_t* out,
@@ -102,7 +91,7 @@ void rowNeon(const ChromaticityTable&, const std::uint8_t* src, int n, Packing p
             const uint8x16x4_t v = vld4q_u8(src + 4 * x);  // B, G, R, X
             pixels16(v.val[2], v.val[1], v.val[0], r + x, g + x, b + x);
         }
-        tail(src + 4 * x, n - x, 4, 2, 0, r + x, g + x, b + x);
+        rowTail(src + 4 * x, n - x, 4, 2, 0, r + x, g + x, b + x);
         return;
     }
     const bool rgb = packing == Packing::Rgb24;
@@ -113,7 +102,7 @@ void rowNeon(const ChromaticityTable&, const std::uint8_t* src, int n, Packing p
         else
             pixels16(v.val[2], v.val[1], v.val[0], r + x, g + x, b + x);
     }
-    tail(src + 3 * x, n - x, 3, rgb ? 0 : 2, rgb ? 2 : 0, r + x, g + x, b + x);
+    rowTail(src + 3 * x, n - x, 3, rgb ? 0 : 2, rgb ? 2 : 0, r + x, g + x, b + x);
 }
 
 }  // namespace vision::chroma_detail

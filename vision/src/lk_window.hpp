@@ -24,12 +24,8 @@ inline int floorToInt(float v) noexcept
 
 /// Top-left pixel and 14-bit weights of a bilinear sample at (x, y).
 struct Bilinear {
-    int x0 = 0;
-    int y0 = 0;
-    int w00 = 0;
-    int w01 = 0;
-    int w10 = 0;
-    int w11 = 0;
+    int x0 = 0, y0 = 0;                      ///< the top-left pixel
+    int w00 = 0, w01 = 0, w10 = 0, w11 = 0;  ///< its weights, then its right, lower, lower-right
 };
 
 inline Bilinear bilinearAt(float x, float y) noexcept
@@ -45,6 +41,25 @@ inline Bilinear bilinearAt(float x, float y) noexcept
     w.w10 = static_cast<int>((1.f - a) * b * one + 0.5f);
     w.w11 = (1 << kWeightBits) - w.w00 - w.w01 - w.w10;
     return w;
+}
+
+/// One row of the mismatch pass: the image rows the bilinear samples read (from the sample's left
+/// column) and the window's values and gradients in that row.
+struct WindowRow {
+    const std::uint8_t* s0;
+    const std::uint8_t* s1;
+    const std::int16_t* values;
+    const std::int16_t* gx;
+    const std::int16_t* gy;
+};
+
+inline WindowRow windowRow(ConstImageView img, const Bilinear& w, int r, int lanes,
+                           const std::int16_t* ival, const std::int16_t* ix,
+                           const std::int16_t* iy) noexcept
+{
+    const std::uint8_t* s0 = img.row(w.y0 + r) + w.x0;
+    const int at = r * lanes;
+    return {s0, s0 + img.stride, ival + at, ix + at, iy + at};
 }
 
 #if defined(__x86_64__)

@@ -21,6 +21,7 @@ using lk_detail::bilinearAt;
 using lk_detail::kSlack;
 using lk_detail::kValueBits;
 using lk_detail::kWeightBits;
+using lk_detail::windowRow;
 
 // The scalar kernels: the reference (lk_window.hpp has their AVX2 builds).
 
@@ -102,11 +103,7 @@ void mismatchInside(ConstImageView img, const Bilinear& w, int rows, int lanes,
     std::int64_t t1 = 0;
     std::int64_t t2 = 0;
     for (int r = 0; r < rows; ++r) {
-        const std::uint8_t* s0 = img.row(w.y0 + r) + w.x0;
-        const std::uint8_t* s1 = s0 + img.stride;
-        const std::int16_t* vi = ival + r * lanes;
-        const std::int16_t* gx = ix + r * lanes;
-        const std::int16_t* gy = iy + r * lanes;
+        const auto [s0, s1, vi, gx, gy] = windowRow(img, w, r, lanes, ival, ix, iy);
         std::int32_t a1 = 0;
         std::int32_t a2 = 0;
         for (int c = 0; c < lanes; ++c) {

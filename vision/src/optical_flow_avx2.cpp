@@ -207,11 +207,7 @@ MIRROR_AVX2 void mismatchInsideAvx2(ConstImageView img, const Bilinear& w, int r
     __m256i acc1 = _mm256_setzero_si256();
     __m256i acc2 = _mm256_setzero_si256();
     for (int r = 0; r < rows; ++r) {
-        const std::uint8_t* s0 = img.row(w.y0 + r) + w.x0;
-        const std::uint8_t* s1 = s0 + img.stride;
-        const std::int16_t* vi = ival + r * lanes;
-        const std::int16_t* gx = ix + r * lanes;
-        const std::int16_t* gy = iy + r * lanes;
+        const auto [s0, s1, vi, gx, gy] = windowRow(img, w, r, lanes, ival, ix, iy);
         int c = 0;
         for (; c + 16 <= lanes; c += 16) {
             const __m256i d =

@@ -135,18 +135,29 @@ MIRROR_SIMD_BODY int settleStageBody(const std::int32_t* __restrict acc, int* __
     return alive;
 }
 
-// The path for this CPU (simd.hpp): each kernel's body built for AVX2 or for the baseline.
-#if defined(__x86_64__)
-MIRROR_AVX2 void rowStumpPassAvx2(const RowStump& st, const std::int32_t* base, bool split, int n,
-                                  const float* __restrict vnf,
-                                  std::int32_t* __restrict acc) noexcept
+/// A stage's sums over windows [0, n): every weak classifier of stage `st` over the row.
+MIRROR_SIMD_BODY void stageSumsBody(const FixedCascade& cascade, const FixedStage& st,
+                                    const std::int32_t* base, bool split, int n,
+                                    const float* __restrict vnf,
+                                    std::int32_t* __restrict acc) noexcept
 {
-    rowStumpPassBody(st, base, split, n, vnf, acc);
+    std::fill_n(acc, n, 0);
+    for (int i = st.first; i < st.first + st.count; ++i) {
+        const auto k = static_cast<std::size_t>(i);
+        if (cascade.stumps())
+            rowStumpPassBody(cascade.rowStumps()[k], base, split, n, vnf, acc);
+        else
+            rowTreePassBody(cascade.rowTrees()[k], base, split, n, vnf, acc);
+    }
 }
-MIRROR_AVX2 void rowTreePassAvx2(const RowTree& t, const std::int32_t* base, bool split, int n,
-                                 const float* __restrict vnf, std::int32_t* __restrict acc) noexcept
+
+// The path for this CPU (simd.hpp): the bodies built for AVX2 or for the baseline.
+#if defined(__x86_64__)
+MIRROR_AVX2 void stageSumsAvx2(const FixedCascade& cascade, const FixedStage& st,
+                               const std::int32_t* base, bool split, int n,
+                               const float* __restrict vnf, std::int32_t* __restrict acc) noexcept
 {
-    rowTreePassBody(t, base, split, n, vnf, acc);
+    stageSumsBody(cascade, st, base, split, n, vnf, acc);
 }
 MIRROR_AVX2 int settleStageAvx2(const std::int32_t* __restrict acc, int* __restrict result,
                                 int* __restrict from, int n, int si, std::int32_t rowReject,
@@ -156,28 +167,18 @@ MIRROR_AVX2 int settleStageAvx2(const std::int32_t* __restrict acc, int* __restr
 }
 #endif
 
-void rowStumpPass(const RowStump& st, const std::int32_t* base, bool split, int n,
-                  const float* __restrict vnf, std::int32_t* __restrict acc) noexcept
+void stageSums(const FixedCascade& cascade, const FixedStage& st, const std::int32_t* base,
+               bool split, int n, const float* vnf, std::int32_t* acc) noexcept
 {
 #if defined(__x86_64__)
     if (simd::hasAvx2())
-        return rowStumpPassAvx2(st, base, split, n, vnf, acc);
+        return stageSumsAvx2(cascade, st, base, split, n, vnf, acc);
 #endif
-    rowStumpPassBody(st, base, split, n, vnf, acc);
+    stageSumsBody(cascade, st, base, split, n, vnf, acc);
 }
 
-void rowTreePass(const RowTree& t, const std::int32_t* base, bool split, int n,
-                 const float* __restrict vnf, std::int32_t* __restrict acc) noexcept
-{
-#if defined(__x86_64__)
-    if (simd::hasAvx2())
-        return rowTreePassAvx2(t, base, split, n, vnf, acc);
-#endif
-    rowTreePassBody(t, base, split, n, vnf, acc);
-}
-
-int settleStage(const std::int32_t* __restrict acc, int* __restrict result, int* __restrict from,
-                int n, int si, std::int32_t rowReject, std::int32_t rowPass) noexcept
+int settleStage(const std::int32_t* acc, int* result, int* from, int n, int si,
+                std::int32_t rowReject, std::int32_t rowPass) noexcept
 {
 #if defined(__x86_64__)
     if (simd::hasAvx2())
@@ -228,16 +229,8 @@ int RowPrefilter::run(const FixedCascade& cascade, const ScaledIntegrals& tables
             break;
         const FixedStage& st = stages[static_cast<std::size_t>(si)];
         const std::int32_t* base = table + lo;
-        const float* vnf = norm_.data() + lo;
         std::int32_t* acc = acc_.data() + lo;
-        std::fill_n(acc, n, 0);
-        for (int i = st.first; i < st.first + st.count; ++i) {
-            const auto k = static_cast<std::size_t>(i);
-            if (cascade.stumps())
-                rowStumpPass(cascade.rowStumps()[k], base, split, n, vnf, acc);
-            else
-                rowTreePass(cascade.rowTrees()[k], base, split, n, vnf, acc);
-        }
+        stageSums(cascade, st, base, split, n, norm_.data() + lo, acc);
         alive = settleStage(acc, result_.data() + lo, from_.data() + lo, n, si, st.rowReject,
                             st.rowPass);
     }
