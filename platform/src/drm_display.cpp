@@ -300,6 +300,7 @@ bool DrmDisplay::Impl::present() noexcept
     }
     inFrame = false;
     bool snapshotOk = true;
+    // A snapshot reads the frame back before the swap and flip, from the buffer just drawn.
     if (snapshotRequested) {
         snapshotNumber = frames;
         snapshotOk = writeSnapshot();
