@@ -5,6 +5,7 @@
 #include "firmware/config.hpp"
 
 #include "config_schema.hpp"
+#include "config_value_text.hpp"
 
 #include <fcntl.h>
 #include <sys/stat.h>

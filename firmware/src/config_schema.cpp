@@ -3,15 +3,9 @@
 
 #include "config_schema.hpp"
 
-#include "firmware/button_actions.hpp"
-#include "platform/display_mode.hpp"
+#include "config_string_checks.hpp"
 
 #include <array>
-#include <charconv>
-#include <cstdio>
-#include <initializer_list>
-#include <system_error>
-#include <utility>
 
 namespace firmware::config_schema {
 
@@ -46,97 +40,6 @@ Value enumValue(E e)
 Value intValue(int i)
 {
     return static_cast<std::int64_t>(i);
-}
-
-/// A spec is one of `names`, or PREFIX:ARGUMENT with a non-empty argument for one of `prefixes`
-/// (each given with the word for its argument, for the message).
-std::string checkSpec(std::string_view value, std::string_view what,
-                      std::initializer_list<std::string_view> names,
-                      std::initializer_list<std::pair<std::string_view, std::string_view>> prefixes)
-{
-    for (std::string_view name : names) {
-        if (value == name) {
-            return {};
-        }
-    }
-    for (const auto& [prefix, argument] : prefixes) {
-        if (value.starts_with(prefix)) {
-            if (value.size() > prefix.size()) {
-                return {};
-            }
-            return quoted(value) + " needs a " + std::string(argument) + " after " + quoted(prefix);
-        }
-    }
-    return "unknown " + std::string(what) + " " + quoted(value);
-}
-
-// libcamera, v4l2, drm and window are accepted here so a config written for a later build still
-// validates; the source/display factories say when one is not built into this version.
-std::string checkSourceSpec(std::string_view value)
-{
-    return checkSpec(value, "source", {"auto", "demo", "synthetic", "libcamera"},
-                     {{"file:", "path"}, {"libcamera:", "camera id"}, {"v4l2:", "device path"}});
-}
-
-std::string checkDisplaySpec(std::string_view value)
-{
-    return checkSpec(value, "display", {"auto", "drm", "window"},
-                     {{"headless:", "directory"}, {"drm:", "card"}});
-}
-
-/// Any path, or empty for "the built-in one".
-std::string checkOptionalPath(std::string_view value)
-{
-    if (value.find('\0') != std::string_view::npos)
-        return "a path cannot contain a NUL character";
-    return {};
-}
-
-std::string checkPath(std::string_view value)
-{
-    if (value.empty())
-        return "needs a file path";
-    return checkOptionalPath(value);
-}
-
-std::string checkButtonAction(std::string_view value)
-{
-    ButtonAction action{};
-    if (parseButtonAction(value, action))
-        return {};
-    return "unknown action " + quoted(value);
-}
-
-std::string checkOverlayName(std::string_view value)
-{
-    if (value.empty())
-        return "needs \"none\" or an overlay name";
-    return checkOptionalPath(value);
-}
-
-std::string checkSerial(std::string_view value)
-{
-    if (!value.empty() && value.front() != '/')
-        return "needs \"\" (none) or an absolute device path";
-    return checkOptionalPath(value);
-}
-
-std::string checkDisplayMode(std::string_view value)
-{
-    if (value.empty() || value == "preferred")
-        return {};
-    platform::DisplayModeRequest mode;
-    std::string error;
-    if (platform::parseDisplayMode(value, mode, error))
-        return {};
-    return error.empty() ? "unknown mode " + quoted(value) : error;
-}
-
-std::string checkDirectory(std::string_view value)
-{
-    if (value.empty())
-        return "needs a directory";
-    return checkOptionalPath(value);
 }
 
 // Enum choices, in the order of the C++ enum they map to (values travel as the index).
@@ -621,11 +524,6 @@ const KeySpec kSchema[] = {
      .get = [](const Config& c) -> Value { return c.state.dir; }},
 };
 
-std::string range(const KeySpec& spec)
-{
-    return formatNumber(spec.min) + ".." + formatNumber(spec.max);
-}
-
 }  // namespace
 
 std::span<const KeySpec> schema()
@@ -663,166 +561,6 @@ std::string keysOf(std::string_view section)
         }
     }
     return list;
-}
-
-std::string_view typeName(const KeySpec& spec)
-{
-    switch (spec.kind) {
-        case Kind::Bool:
-            return "boolean";
-        case Kind::Int:
-            return "integer";
-        case Kind::Float:
-            return "float";
-        case Kind::String:
-        case Kind::Enum:
-            return "string";
-        case Kind::Rate:
-            return "string or number";
-        case Kind::IntList:
-            return "array of integers";
-        case Kind::WordList:
-            return "array of strings";
-    }
-    return "?";
-}
-
-std::string allowed(const KeySpec& spec)
-{
-    switch (spec.kind) {
-        case Kind::Bool:
-            return "true, false";
-        case Kind::Int:
-            return (spec.even ? "even numbers " : "") + range(spec);
-        case Kind::Float:
-            return range(spec);
-        case Kind::String:
-            return std::string(spec.stringForms);
-        case Kind::Enum: {
-            std::string list;
-            for (std::string_view choice : spec.choices) {
-                list += (list.empty() ? "" : ", ") + quoted(choice);
-            }
-            return list;
-        }
-        case Kind::Rate:
-            return R"("native", "max" or a number )" + range(spec);
-        case Kind::IntList: {
-            std::string text = "1..";
-            text += std::to_string(spec.maxItems);
-            text += " distinct integers, each ";
-            text += range(spec);
-            return text;
-        }
-        case Kind::WordList: {
-            std::string text = "up to ";
-            text += std::to_string(spec.maxItems);
-            text += " of ";
-            text += spec.stringForms;
-            return text;
-        }
-    }
-    return {};
-}
-
-std::string formatValue(const KeySpec& spec, const Value& value)
-{
-    switch (spec.kind) {
-        case Kind::Bool:
-            return asBool(value) ? "true" : "false";
-        case Kind::Int:
-            return std::to_string(std::get<std::int64_t>(value));
-        case Kind::Float: {
-            // A float key must print as a TOML float (30.0, not 30) so the type survives a reload.
-            std::string text = formatNumber(asDouble(value));
-            if (text.find_first_of(".eEni") == std::string::npos) {
-                text += ".0";
-            }
-            return text;
-        }
-        case Kind::String:
-            return quoted(asText(value));
-        case Kind::Enum: {
-            const auto index = static_cast<std::size_t>(std::get<std::int64_t>(value));
-            return quoted(index < spec.choices.size() ? spec.choices[index] : "?");
-        }
-        case Kind::Rate:
-            if (const auto* text = std::get_if<std::string>(&value)) {
-                return quoted(*text);
-            }
-            return formatNumber(asDouble(value));  // an integral rate prints as an integer: fine
-        case Kind::IntList: {
-            std::string text = "[";
-            for (const std::int64_t v : std::get<std::vector<std::int64_t>>(value)) {
-                if (text.size() > 1)
-                    text += ", ";
-                text += std::to_string(v);
-            }
-            return text + "]";
-        }
-        case Kind::WordList: {
-            std::string text = "[";
-            for (const std::string& w : std::get<std::vector<std::string>>(value)) {
-                if (text.size() > 1)
-                    text += ", ";
-                text += quoted(w);
-            }
-            return text + "]";
-        }
-    }
-    return {};
-}
-
-std::string quoted(std::string_view text)
-{
-    std::string out = "\"";
-    for (const char ch : text) {
-        const auto byte = static_cast<unsigned char>(ch);
-        switch (ch) {
-            case '"':
-                out += "\\\"";
-                break;
-            case '\\':
-                out += "\\\\";
-                break;
-            case '\b':
-                out += "\\b";
-                break;
-            case '\t':
-                out += "\\t";
-                break;
-            case '\n':
-                out += "\\n";
-                break;
-            case '\f':
-                out += "\\f";
-                break;
-            case '\r':
-                out += "\\r";
-                break;
-            default:
-                if (byte < 0x20 || byte == 0x7f) {
-                    char escape[8];
-                    std::snprintf(escape, sizeof escape, "\\u%04X", static_cast<unsigned>(byte));
-                    out += escape;
-                } else {
-                    out += ch;  // UTF-8 passes through: TOML strings are UTF-8
-                }
-        }
-    }
-    return out + "\"";
-}
-
-std::string formatNumber(double value)
-{
-    // Plain digits read best ("100000", not "1e+05"); exponents only for very large or small
-    // values.
-    char text[64];
-    auto result = std::to_chars(text, text + sizeof text, value, std::chars_format::fixed);
-    if (result.ec != std::errc() || result.ptr - text > 20) {
-        result = std::to_chars(text, text + sizeof text, value);
-    }
-    return std::string(text, result.ptr);
 }
 
 }  // namespace firmware::config_schema

@@ -80,8 +80,10 @@ CardSceneSource::CardSceneSource(std::unique_ptr<FrameSource> inner,
 
 CardSceneSource::Pose CardSceneSource::poseFor(std::uint64_t sequence) const noexcept
 {
-    // The training intro holds the card still, then eases into the path (whose time starts
-    // when the intro ends, so the path is the same with or without an intro).
+    // The training intro holds the card still, as a person does before `card train`: centred,
+    // facing the camera and large enough to cover the central half of the view. It then eases
+    // into the path over as many frames again (the path's time starts when the intro ends, so the
+    // path is the same with or without an intro).
     const auto intro = static_cast<std::uint64_t>(std::max(0, options_.introFrames));
     const double t = sequence < intro ? 0.0 : static_cast<double>(sequence - intro) / 30.0;
     double yaw = kMaxYaw * std::sin(kTwoPi * t / 7.3);

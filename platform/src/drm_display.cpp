@@ -5,13 +5,13 @@
 #endif
 #include "platform/drm_display.hpp"
 
+#include "drm_output_choice.hpp"
 #include "platform/display_mode.hpp"
 #include "platform/egl_context.hpp"
 #include "platform/png_writer.hpp"
 
 #include <EGL/eglext.h>
 #include <GLES2/gl2.h>
-#include <fcntl.h>
 #include <gbm.h>
 #include <poll.h>
 #include <unistd.h>
@@ -36,93 +36,6 @@ std::int64_t monotonicMs() noexcept
     timespec ts{};
     clock_gettime(CLOCK_MONOTONIC, &ts);
     return static_cast<std::int64_t>(ts.tv_sec) * 1000 + ts.tv_nsec / 1'000'000;
-}
-
-double refreshOf(const drmModeModeInfo& m) noexcept
-{
-    if (m.htotal == 0 || m.vtotal == 0)
-        return m.vrefresh;
-    double hz = m.clock * 1000.0 / (static_cast<double>(m.htotal) * m.vtotal);
-    if ((m.flags & DRM_MODE_FLAG_INTERLACE) != 0)
-        hz *= 2.0;
-    if ((m.flags & DRM_MODE_FLAG_DBLSCAN) != 0)
-        hz /= 2.0;
-    return hz;
-}
-
-DisplayModeCandidate candidateOf(const drmModeModeInfo& m) noexcept
-{
-    return {m.hdisplay, m.vdisplay, refreshOf(m), (m.type & DRM_MODE_TYPE_PREFERRED) != 0,
-            (m.flags & DRM_MODE_FLAG_INTERLACE) != 0};
-}
-
-/// The cards to look at: the one asked for, else every /dev/dri/cardN in order.
-std::vector<std::string> candidateCards(const std::string& card)
-{
-    if (!card.empty())
-        return {card};
-    std::vector<std::string> cards;
-    for (int n = 0; n < 16; ++n) {
-        const std::string path = "/dev/dri/card" + std::to_string(n);
-        if (access(path.c_str(), F_OK) == 0)
-            cards.push_back(path);
-    }
-    return cards;
-}
-
-/// A connected connector with modes on `fd`, or nullptr (caller frees). `why` says what was found.
-drmModeConnector* connectedConnector(int fd, std::string& why)
-{
-    drmModeRes* resources = drmModeGetResources(fd);
-    if (resources == nullptr) {
-        why = "not a KMS device (" + std::string(std::strerror(errno)) + ")";
-        return nullptr;
-    }
-    drmModeConnector* found = nullptr;
-    for (int i = 0; i < resources->count_connectors && found == nullptr; ++i) {
-        drmModeConnector* c = drmModeGetConnector(fd, resources->connectors[i]);
-        if (c != nullptr && c->connection == DRM_MODE_CONNECTED && c->count_modes > 0)
-            found = c;
-        else if (c != nullptr)
-            drmModeFreeConnector(c);
-    }
-    if (found == nullptr)
-        why = resources->count_connectors == 0 ? "no connectors" : "no connected display";
-    drmModeFreeResources(resources);
-    return found;
-}
-
-std::string connectorName(const drmModeConnector* c)
-{
-    const char* type = drmModeGetConnectorTypeName(c->connector_type);
-    return std::string(type != nullptr ? type : "Unknown") + "-" +
-           std::to_string(c->connector_type_id);
-}
-
-/// A CRTC that can drive `connector`: its current encoder's, else any its encoders allow.
-std::uint32_t findCrtc(int fd, const drmModeRes* resources, const drmModeConnector* connector)
-{
-    if (connector->encoder_id != 0) {
-        if (drmModeEncoder* e = drmModeGetEncoder(fd, connector->encoder_id)) {
-            const std::uint32_t crtc = e->crtc_id;
-            drmModeFreeEncoder(e);
-            if (crtc != 0)
-                return crtc;
-        }
-    }
-    for (int i = 0; i < connector->count_encoders; ++i) {
-        drmModeEncoder* e = drmModeGetEncoder(fd, connector->encoders[i]);
-        if (e == nullptr)
-            continue;
-        for (int j = 0; j < resources->count_crtcs; ++j) {
-            if ((e->possible_crtcs & (1u << j)) != 0) {
-                drmModeFreeEncoder(e);
-                return resources->crtcs[j];
-            }
-        }
-        drmModeFreeEncoder(e);
-    }
-    return 0;
 }
 
 /// Framebuffer ids of GBM buffers, in a fixed table: a GBM surface has only a few buffers.
@@ -176,10 +89,7 @@ struct DrmDisplay::Impl {
     std::string description;
     char error[512] = {};
 
-    [[noreturn]] void fail(const std::string& what) const
-    {
-        throw std::runtime_error("drm: " + (cardPath.empty() ? "" : cardPath + ": ") + what);
-    }
+    [[noreturn]] void fail(const std::string& what) const { throwDrmError(cardPath, what); }
 
     void open();
     void createSurface();
@@ -193,58 +103,13 @@ struct DrmDisplay::Impl {
 
 void DrmDisplay::Impl::open()
 {
-    DisplayModeRequest request;
-    std::string problem;
-    if (!parseDisplayMode(options.mode, request, problem))
-        fail(problem);
-
-    const std::vector<std::string> cards = candidateCards(options.card);
-    if (cards.empty())
-        fail("no /dev/dri/card* (no KMS driver loaded, or no permission to see it)");
-    std::string tried;
-    drmModeConnector* connector = nullptr;
-    for (const std::string& path : cards) {
-        const int cardFd = ::open(path.c_str(), O_RDWR | O_CLOEXEC);
-        std::string why;
-        if (cardFd < 0) {
-            why = std::strerror(errno);
-        } else {
-            connector = connectedConnector(cardFd, why);
-            if (connector != nullptr) {
-                fd = cardFd;
-                cardPath = path;
-                break;
-            }
-            ::close(cardFd);
-        }
-        tried += (tried.empty() ? "" : "; ") + path + ": " + why;
-    }
-    if (connector == nullptr)
-        fail(options.card.empty() ? "no card with a connected display (" + tried + ")" : tried);
-
-    connectorId = connector->connector_id;
-    const std::string connName = connectorName(connector);
-    std::vector<DisplayModeCandidate> candidates;
-    for (int i = 0; i < connector->count_modes; ++i)
-        candidates.push_back(candidateOf(connector->modes[i]));
-    const int chosen = chooseDisplayMode(candidates, request);
-    if (chosen < 0) {
-        std::string list;
-        for (std::size_t i = 0; i < candidates.size() && i < 12; ++i)
-            list += (list.empty() ? "" : " ") + displayModeName(candidates[i]);
-        drmModeFreeConnector(connector);
-        fail(connName + " has no mode " + options.mode + " (modes: " + list + ")");
-    }
-    mode = connector->modes[chosen];
-    refreshHz = refreshOf(mode);
-
-    drmModeRes* resources = drmModeGetResources(fd);
-    crtcId = resources != nullptr ? findCrtc(fd, resources, connector) : 0;
-    if (resources != nullptr)
-        drmModeFreeResources(resources);
-    drmModeFreeConnector(connector);
-    if (crtcId == 0)
-        fail("no CRTC can drive " + connName);
+    const DrmOutput output = chooseDrmOutput(options.card, options.mode);
+    fd = output.fd;
+    cardPath = output.cardPath;
+    connectorId = output.connectorId;
+    crtcId = output.crtcId;
+    mode = output.mode;
+    refreshHz = displayModeCandidateOf(mode).refreshHz;
     savedCrtc = drmModeGetCrtc(fd, crtcId);
 
     createSurface();
@@ -264,8 +129,9 @@ void DrmDisplay::Impl::open()
     if (version != nullptr)
         drmFreeVersion(version);
     const char* renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
-    description = "drm:" + cardPath + " " + connName + " " + displayModeName(candidateOf(mode)) +
-                  " (" + driver + ", " + (renderer != nullptr ? renderer : "?") + ")";
+    description = "drm:" + cardPath + " " + output.connectorName + " " +
+                  displayModeName(displayModeCandidateOf(mode)) + " (" + driver + ", " +
+                  (renderer != nullptr ? renderer : "?") + ")";
 }
 
 void DrmDisplay::Impl::createSurface()
@@ -434,6 +300,7 @@ bool DrmDisplay::Impl::present() noexcept
     }
     inFrame = false;
     bool snapshotOk = true;
+    // A snapshot reads the frame back before the swap and flip, from the buffer just drawn.
     if (snapshotRequested) {
         snapshotNumber = frames;
         snapshotOk = writeSnapshot();
@@ -596,26 +463,6 @@ long DrmDisplay::modeSetFailures() const noexcept
 double DrmDisplay::refreshHz() const noexcept
 {
     return impl_->refreshHz;
-}
-
-bool drmDisplayAvailable() noexcept
-{
-    try {
-        for (const std::string& path : candidateCards("")) {
-            const int fd = ::open(path.c_str(), O_RDWR | O_CLOEXEC);
-            if (fd < 0)
-                continue;
-            std::string why;
-            drmModeConnector* c = connectedConnector(fd, why);
-            ::close(fd);
-            if (c != nullptr) {
-                drmModeFreeConnector(c);
-                return true;
-            }
-        }
-    } catch (...) {
-    }
-    return false;
 }
 
 }  // namespace platform

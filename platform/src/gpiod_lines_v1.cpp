@@ -75,6 +75,8 @@ GpiodLines::GpiodLines(const std::string& chip, std::span<const unsigned> offset
         throw std::runtime_error(where + ": " + std::to_string(offsets.size()) +
                                  " lines given, 1.." + std::to_string(GPIOD_LINE_BULK_MAX_LINES) +
                                  " supported");
+    // `chip` is a name ("gpiochip0"), a number ("0"), a label ("pinctrl-bcm2711") or a path
+    // ("/dev/gpiochip0").
     errno = 0;
     handles_->chip = gpiod_chip_open_lookup(chip.c_str());
     if (!handles_->chip) {

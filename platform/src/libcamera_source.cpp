@@ -148,6 +148,7 @@ void LibcameraSource::Impl::open(const LibcameraOptions& options)
     if (options.bufferCount < 2 || options.bufferCount > 32)
         fail("buffer count must be 2..32, not " + std::to_string(options.bufferCount));
     timeoutNs = options.timeoutNs > 0 ? options.timeoutNs : 2'000'000'000;
+    // The first frame may take longer: sensor start-up, and emulated machines are slow.
     firstFrameTimeoutNs = std::max(options.firstFrameTimeoutNs, timeoutNs);
 
     if (restartRequired().load())
@@ -169,6 +170,8 @@ void LibcameraSource::Impl::open(const LibcameraOptions& options)
                   fourccName(libcameraFourccFor(format), formatText, sizeof formatText) + ")";
 }
 
+// `which` is an index into libcamera's list ("0", "1", ...) or a camera id as `cam -l` prints it
+// (e.g. "platform/vimc.0 Sensor B").
 void LibcameraSource::Impl::selectCamera(const std::string& which)
 {
     const std::vector<std::shared_ptr<libcamera::Camera>> cameras = manager->cameras();

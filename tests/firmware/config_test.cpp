@@ -4,6 +4,7 @@
 #include "firmware/config.hpp"
 
 #include "../../firmware/src/config_schema.hpp"  // white-box: the schema table itself
+#include "../../firmware/src/config_value_text.hpp"
 #include "test_paths.hpp"
 
 #include <gtest/gtest.h>

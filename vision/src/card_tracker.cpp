@@ -160,6 +160,8 @@ struct CardTracker::State {
     const char* problem = "";
 };
 
+// The corners are filtered by a One-Euro filter per coordinate (options: rest cutoff, speed gain,
+// frame rate), matched to the filters' own corner order first.
 Quad CardTracker::State::smooth(const Quad& raw, float scale) noexcept
 {
     const float dt = 1.f / std::max(options.frameRateHz, 1.f);
@@ -300,6 +302,13 @@ const char* CardTracker::lastProblem() const noexcept
     return s_->problem;
 }
 
+// Per frame, the steps of §2: colour test of every pixel against a Gaussian chromaticity model (2),
+// object mask updated only where the frame changed (3), largest 8-connected component -> convex
+// hull -> Low & Ilie minimum bounding quadrilateral (4), refinement along edge normals on the
+// saturation gradient with a RANSAC line fit per edge (5, details in edge_refinement.hpp), mask
+// cleared outside the quad (6), model update mu' = a mu_train + (1 - a)(b mu_prev + (1 - b) mu_cur)
+// (7). Beyond the dissertation, a frame is accepted only when its quad is plausible, and a lost
+// track is searched for with the trained colour and recovered to the last good shape.
 const CardObservation& CardTracker::process(const ConstImageView& rgb,
                                             const ChromaticityPlanes& chroma) noexcept
 {
@@ -321,8 +330,8 @@ const CardObservation& CardTracker::process(const ConstImageView& rgb,
 
     const bool tracking = obs.state == CardState::Tracking;
     const ImageView mask = s.mask.view();
-    // Steps 2-3. While searching, the whole frame against the trained colour (a stale mask or a
-    // drifted model is what lost the track); while tracking, only the pixels that changed.
+    // Steps 2-3. While searching or lost, the whole frame against the trained colour (a stale mask
+    // or a drifted model is what lost the track); while tracking, only the pixels that changed.
     if (tracking) {
         s.difference.updateMask(rgb, chroma, colorBounds(s.current, o.threshold), o.changeThreshold,
                                 mask);
@@ -358,6 +367,8 @@ const CardObservation& CardTracker::process(const ConstImageView& rgb,
         if (x1 != x0)
             s.points[n++] = {static_cast<float>(x1), static_cast<float>(y)};
     }
+    // The quad fit first removes hull edges along the frame border, so a corner out of view is
+    // extrapolated.
     const int hn = convexHull(s.points.get(), n, s.hull.get());
     Quad coarse;
     if (hn < 3 ||
@@ -384,7 +395,9 @@ const CardObservation& CardTracker::process(const ConstImageView& rgb,
         result = &r2;
     }
 
-    // Plausibility: the beyond-the-dissertation lost-track test.
+    // Plausibility: the beyond-the-dissertation lost-track test. Convex, sane aspect and
+    // perspective, enough edge inliers, no area jump while tracking, the component fills the quad,
+    // and on recovery a shape like the last one seen whole.
     const float area = quadArea(raw);
     const float aspect = aspectOf(raw);
     const float inlierRatio = result->normals > 0 ? static_cast<float>(result->inliers) /
@@ -421,7 +434,7 @@ const CardObservation& CardTracker::process(const ConstImageView& rgb,
             why = "area jump";
     }
     // An edge without image evidence lying on the frame border: the card is leaving the view and
-    // that edge is unknowable.
+    // that edge is unknowable (a tracked card is reported Lost).
     for (int i = 0; i < 4 && !why; ++i)
         if (!result->fitted[i] && nearBorder(raw[i], s.size) &&
             nearBorder(raw[(i + 1) % 4], s.size))

@@ -11,13 +11,9 @@
 namespace platform {
 
 struct ButtonPressOptions {
-    /// A level counts once it has lasted this long without another edge. Contacts of the usual
-    /// tactile switches bounce for 1-10 ms; 30 ms filters that and still feels instant.
-    std::int64_t debounceNs = 30'000'000;
-    /// Held at least this long: a long press, reported the moment the threshold passes.
-    std::int64_t longPressNs = 800'000'000;
-    /// Pressed reads low (a switch to ground with a pull-up, the usual wiring).
-    bool activeLow = true;
+    std::int64_t debounceNs = 30'000'000;    ///< a level counts once it lasts this long unchanged
+    std::int64_t longPressNs = 800'000'000;  ///< held this long: a long press, reported at once
+    bool activeLow = true;  ///< pressed reads low (a switch to ground with a pull-up, the usual)
 };
 
 /// One raw edge of one line, as the GPIO driver reports it: the physical level after the edge

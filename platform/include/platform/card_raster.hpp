@@ -14,13 +14,10 @@ struct CardPaint {
     std::uint8_t red = 40;  ///< nominal colour (RGB, whatever the image's byte order)
     std::uint8_t green = 172;
     std::uint8_t blue = 76;
-    /// Brightness at the card centre (1 = nominal colour) and its slope along the card's own u
-    /// and v axes (u, v in [-1, 1] from edge to edge): light = brightness + gradientU u +
-    /// gradientV v.
-    double brightness = 1.0;
-    double gradientU = 0.0;
-    double gradientV = 0.0;
-    int noise = 0;                ///< per-pixel noise, +- grey levels, deterministic
+    double brightness = 1.0;  ///< at the card centre (1 = nominal colour)
+    double gradientU = 0.0;   ///< its slope along the card's own u axis (u in [-1, 1] edge to edge)
+    double gradientV = 0.0;   ///< and along v: light = brightness + gradientU u + gradientV v
+    int noise = 0;            ///< per-pixel noise, +- grey levels, deterministic
     std::uint32_t noiseSeed = 0;  ///< e.g. the frame's sequence number
 };
 

@@ -16,16 +16,11 @@ struct CardSceneOptions {
     std::uint8_t red = 40;  ///< card colour (RGB, whatever the frame's byte order)
     std::uint8_t green = 172;
     std::uint8_t blue = 76;
-    /// Vertical extent of the unrotated card relative to the frame height (0.25..0.35 is typical).
-    double heightFraction = 0.30;
-    bool portrait = false;  ///< A5 upright (long side vertical) instead of landscape
-    /// Brightness of the card varies within 1 +- shading (a gradient across it and its tilt).
-    double shading = 0.08;
-    int noise = 4;  ///< per-pixel noise, +- grey levels, deterministic
-    /// Frames at the start where the card is held up for training: centred, facing the camera and
-    /// large enough to cover the central half of the view (what a person does before `card
-    /// train`); it then eases into its path over the next `introFrames` frames. 0 = no intro.
-    int introFrames = 0;
+    double heightFraction = 0.30;  ///< the unrotated card's height / the frame's (0.25..0.35)
+    bool portrait = false;         ///< A5 upright (long side vertical) instead of landscape
+    double shading = 0.08;         ///< brightness varies within 1 +- shading (gradient and tilt)
+    int noise = 4;                 ///< per-pixel noise, +- grey levels, deterministic
+    int introFrames = 0;           ///< frames held up for training first, then as many easing out
 
     /// Green construction paper (the default).
     static constexpr CardSceneOptions greenCard() noexcept { return {}; }

@@ -10,17 +10,11 @@
 namespace platform {
 
 struct DrmOptions {
-    /// "/dev/dri/cardN", or "" to take the first card with a connected connector.
-    std::string card;
-    /// "", "preferred", "WxH" or "WxH@Hz" (parseDisplayMode).
-    std::string mode;
-    /// Where requestSnapshot() writes snapshot-NNNNNN.png (read back before the flip); "" = no
-    /// snapshots. The folder must exist and be writable.
-    std::string snapshotDir;
-    /// How long present() waits for the previous page flip before calling the display stuck.
-    int flipTimeoutMs = 1000;
-    /// After a failed mode set or flip, how long beginFrame() declines frames before trying again.
-    int retryIntervalMs = 1000;
+    std::string card;            ///< "/dev/dri/cardN", or "" for the first with a connected display
+    std::string mode;            ///< "", "preferred", "WxH" or "WxH@Hz" (parseDisplayMode)
+    std::string snapshotDir;     ///< an existing, writable folder for requestSnapshot(); "" = none
+    int flipTimeoutMs = 1000;    ///< present() waits this long for the last flip, else it is stuck
+    int retryIntervalMs = 1000;  ///< after a failed mode set or flip, beginFrame() declines frames
 };
 
 /// \class DrmDisplay

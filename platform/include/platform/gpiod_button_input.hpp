@@ -26,16 +26,11 @@ enum class GpioBias : std::uint8_t {
 };
 
 struct GpiodButtonOptions {
-    /// The chip: a name ("gpiochip0"), a number ("0"), a label ("pinctrl-bcm2711") or a path
-    /// ("/dev/gpiochip0"), as gpiod_chip_open_lookup() takes it.
-    std::string chip = "gpiochip0";
-    /// Line offsets on the chip; button n is lines[n-1].
-    std::vector<unsigned> lines;
+    std::string chip = "gpiochip0";  ///< name, number, label or path (gpiod_chip_open_lookup)
+    std::vector<unsigned> lines;     ///< line offsets on the chip; button n is lines[n-1]
     GpioBias bias = GpioBias::PullUp;
-    /// Debounce, long-press threshold and active-low (applied here, not by the kernel).
-    ButtonPressOptions press;
-    /// Shown as the lines' user by `gpioinfo`.
-    std::string consumer = "mirror";
+    ButtonPressOptions press;         ///< debounce, long press, active-low (here, not the kernel)
+    std::string consumer = "mirror";  ///< shown as the lines' user by `gpioinfo`
 };
 
 /// Buttons on the lines of one GPIO chip, with edge events on both edges.

@@ -12,21 +12,14 @@
 namespace platform {
 
 struct LibcameraOptions {
-    /// A camera index into libcamera's list ("0", "1", ...) or a camera id as `cam -l` prints it
-    /// (e.g. "platform/vimc.0 Sensor B").
-    std::string camera = "0";
+    std::string camera = "0";  ///< an index into libcamera's list, or an id as `cam -l` prints it
     int width = 640;
     int height = 480;
-    /// Requested frame rate (FrameDurationLimits, when the camera has that control); 0 = default.
-    double fps = 30.0;
-    /// Formats we take, best first (empty: defaultFormatPreference()).
-    std::vector<vision::PixelFormat> formats;
-    /// Frame buffers (and requests) shared between the camera and us; at least 2.
-    int bufferCount = 4;
-    /// No frame within this time: next() returns Lost ("stalled").
-    std::int64_t timeoutNs = 2'000'000'000;
-    /// Longer patience for the first frame (sensor start-up, emulated machines).
-    std::int64_t firstFrameTimeoutNs = 5'000'000'000;
+    double fps = 30.0;  ///< asked by FrameDurationLimits where the camera has it; 0 = default
+    std::vector<vision::PixelFormat> formats;  ///< best first (empty: defaultFormatPreference())
+    int bufferCount = 4;  ///< frame buffers (and requests) shared with the camera; at least 2
+    std::int64_t timeoutNs = 2'000'000'000;  ///< no frame within this: next() is Lost ("stalled")
+    std::int64_t firstFrameTimeoutNs = 5'000'000'000;  ///< for the first frame (sensor start-up)
 };
 
 /// \class LibcameraSource

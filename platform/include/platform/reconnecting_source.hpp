@@ -25,11 +25,8 @@ const char* cameraStateName(CameraState state) noexcept;
 
 struct ReconnectOptions {
     std::int64_t firstRetryNs = 500'000'000;  ///< delay before the first reopen after a failure
-    std::int64_t maxRetryNs =
-        8'000'000'000;  ///< the delay doubles after each failed reopen, to this
-    /// Whether the kind of source `open` makes can never be opened again in this process (for
-    /// libcamera: libcameraRestartRequired); null: it always can. Answers needsProcessRestart().
-    bool (*processRestartRequired)() noexcept = nullptr;
+    std::int64_t maxRetryNs = 8'000'000'000;  ///< doubled after each failed reopen, up to this
+    bool (*processRestartRequired)() noexcept = nullptr;  ///< needsProcessRestart(); null: false
 };
 
 /// Opens the inner source; throws std::runtime_error with one line when it cannot.
@@ -88,7 +85,9 @@ public:
     /// (e.g. missing at boot, and the camera adjusts the configured size): the firmware should
     /// rebuild its pipeline with a new source. Cleared by a successful reopen.
     bool needsPipelineRebuild() const noexcept override { return needsRebuild_; }
-    /// What ReconnectOptions::processRestartRequired says (false without one).
+    /// Whether the kind of source `open` makes can never be opened again in this process:
+    /// ReconnectOptions::processRestartRequired (for libcamera libcameraRestartRequired), false
+    /// without one.
     bool needsProcessRestart() const noexcept override
     {
         return options_.processRestartRequired != nullptr && options_.processRestartRequired();

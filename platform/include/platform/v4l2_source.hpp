@@ -15,18 +15,12 @@ struct V4l2Options {
     std::string device = "/dev/video0";
     int width = 640;
     int height = 480;
-    /// Requested frame rate (VIDIOC_S_PARM, where the driver supports it); 0 = the driver's.
-    double fps = 30.0;
-    /// Raw formats we take, best first (empty: defaultFormatPreference()).
-    std::vector<vision::PixelFormat> formats;
-    /// When the device offers none of `formats`: capture MJPEG and decode it to RGB24.
-    bool allowMjpeg = true;
-    /// Driver buffers requested (the driver may grant more); at least 2 are needed.
-    int bufferCount = 4;
-    /// No frame within this time: next() returns Lost ("stalled").
-    std::int64_t timeoutNs = 2'000'000'000;
-    /// Longer patience for the first frame (webcams take a while to start streaming).
-    std::int64_t firstFrameTimeoutNs = 5'000'000'000;
+    double fps = 30.0;  ///< asked by VIDIOC_S_PARM where the driver supports it; 0 = the driver's
+    std::vector<vision::PixelFormat> formats;  ///< best first (empty: defaultFormatPreference())
+    bool allowMjpeg = true;  ///< no raw format of `formats`: capture MJPEG, decode to RGB24
+    int bufferCount = 4;     ///< driver buffers asked for (it may grant more); at least 2
+    std::int64_t timeoutNs = 2'000'000'000;  ///< no frame within this: next() is Lost ("stalled")
+    std::int64_t firstFrameTimeoutNs = 5'000'000'000;  ///< for the first frame (webcams are slow)
 };
 
 /// \class V4l2Source

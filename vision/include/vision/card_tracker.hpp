@@ -1,24 +1,10 @@
 #pragma once
-// CardTracker: the colour-card tracker of method ch. 4 (METHOD.md §2), plus what the dissertation
-// lists as future work: detecting a lost track and recovering from the trained colour and the last
-// good shape, sub-pixel corners and temporal smoothing.
+// CardTracker: the colour-card tracker (METHOD.md §2), plus what the dissertation lists as future
+// work: detecting a lost track and recovering from the trained colour and the last good shape,
+// sub-pixel corners and temporal smoothing.
 //
-// Per frame (steps of §2): colour test of every pixel against a Gaussian chromaticity model (2),
-// object mask updated only where the frame changed (3), largest 8-connected component -> convex
-// hull -> Low & Ilie minimum bounding quadrilateral (4), refinement along edge normals on the
-// saturation gradient with a RANSAC line fit per edge (5), mask cleared outside the quad (6),
-// model update mu' = a mu_train + (1 - a)(b mu_prev + (1 - b) mu_cur) (7).
-//
-// Beyond the dissertation: while Searching or Lost the whole frame is tested against the TRAINED
-// model (a drifted model or a stale mask is what lost the track); a frame is accepted only when
-// its quad is plausible (convex, sane aspect and perspective, enough edge inliers, no area jump,
-// the component fills the quad, and on recovery a shape like the last one seen whole). While
-// tracking, components cut off the card by an occluder are merged back. Hull edges along the
-// frame border are removed first by the quad fit, so a corner out of view is extrapolated; a card
-// with a whole edge out of view is reported Lost (that edge is unknowable). Corners are filtered
-// by a One-Euro filter per coordinate (options: rest cutoff, speed gain, frame rate).
-// Edge refinement details: edge_refinement.hpp. lastProblem() says why a frame was not tracked.
-//
+// train() or setModel() gives it the card's colour; process() then runs steps 2-7 of §2 on every
+// frame and reports the card's corners (CardObservation), or lastProblem() says why it found none.
 // All buffers are allocated in the constructor for the configured size; process() never allocates
 // and never throws.
 
@@ -53,26 +39,24 @@ struct CardTrackerOptions {
     float alpha = 0.25f;       ///< a of step 7: weight of the trained model (anchor, no drift)
     float beta = 0.75f;        ///< b of step 7: weight of the previous model (steadiness)
     int changeThreshold = 24;  ///< step 3: |dR|+|dG|+|dB| above this marks a changed pixel
-    float minAreaFraction =
-        0.003f;                     ///< a component smaller than this share of the frame is no card
-    float maxAreaFraction = 0.85f;  ///< more than this matches: the model ran away -> lost
-    int normalsPerEdge = 12;        ///< step 5: sample lines across each edge (first, wide pass)
-    float saturationGradient = 0.12f;   ///< step 5: edge where dS exceeds this (S in 0..1)
+    float minAreaFraction = 0.003f;    ///< a component below this share of the frame is no card
+    float maxAreaFraction = 0.85f;     ///< more than this matches: the model ran away -> lost
+    int normalsPerEdge = 12;           ///< step 5: sample lines across each edge (first, wide pass)
+    float saturationGradient = 0.12f;  ///< step 5: edge where dS exceeds this (S in 0..1)
     float smoothingMinCutoffHz = 1.0f;  ///< One-Euro filter on corners: jitter at rest
     float smoothingBeta = 0.5f;         ///< One-Euro: how fast the cutoff rises with speed (no lag)
     // Added by the implementation (defaults tuned on generated sequences):
     float smoothingDerivativeCutoffHz = 5.0f;  ///< One-Euro: low-pass on the speed estimate
     float frameRateHz = 30.f;     ///< frame interval for the smoothing (process() has no clock)
     float inlierDistance = 1.0f;  ///< step 5: RANSAC inlier band around an edge line (pixels)
-    float coarseSearch =
-        0.12f;               ///< step 5, first pass: walk this share of sqrt(quad area) each side
-    float fineSearch = 5.f;  ///< step 5, second pass: walk this far each side (pixels)
-    int fineNormalsPerEdge = 32;       ///< step 5, second pass: sample lines per edge (short walks)
-    float minInlierRatio = 0.3f;       ///< fewer edge inliers per sample line: implausible -> lost
-    float maxAspect = 8.f;             ///< longer side / shorter side above this: implausible
-    float maxOppositeEdgeRatio = 4.f;  ///< perspective: opposite edges differ more: implausible
-    float maxAreaJump = 1.6f;          ///< quad area change per frame (either way) while tracking
-    float minFill = 0.3f;              ///< component pixels / quad area below this: implausible
+    float coarseSearch = 0.12f;   ///< step 5, first pass: walk this x sqrt(quad area) each side
+    float fineSearch = 5.f;       ///< step 5, second pass: walk this far each side (pixels)
+    int fineNormalsPerEdge = 32;  ///< step 5, second pass: sample lines per edge (short walks)
+    float minInlierRatio = 0.3f;  ///< fewer edge inliers per sample line: implausible -> lost
+    float maxAspect = 8.f;        ///< longer side / shorter side above this: implausible
+    float maxOppositeEdgeRatio = 4.f;   ///< perspective: opposite edges differ more: implausible
+    float maxAreaJump = 1.6f;           ///< quad area change per frame (either way) while tracking
+    float minFill = 0.3f;               ///< component pixels / quad area below this: implausible
     float maxRecoveryAreaChange = 3.f;  ///< recovery: area within this factor of the last good
     unsigned shapeMemoryFrames = 45;  ///< after this many lost frames any plausible shape recovers
 };
@@ -83,9 +67,8 @@ struct CardObservation {
     bool hasQuad = false;    ///< quad is valid (Tracking; also the last good shape while Lost)
     Quad quad{};             ///< smoothed corners, sub-pixel, clockwise from the top-left
     Quad rawQuad{};          ///< corners of this frame before temporal smoothing
-    ConstImageView
-        mask;  ///< object mask, Gray8, 255 = card-coloured object pixel; valid until next process()
-    int area = 0;                       ///< pixels of the largest component
+    ConstImageView mask;  ///< object mask, Gray8, 255 = card-coloured pixel; until next process()
+    int area = 0;         ///< pixels of the largest component
     std::uint32_t framesSinceGood = 0;  ///< frames since the last Tracking frame
 };
 

@@ -7,18 +7,12 @@
 // ones along a column (vertical gradient). Saturation is computed only on those sample lines
 // (§2, dissertation 4.3: touch only the pixels needed). Each edge gets a RANSAC line; corners are
 // the intersections of adjacent lines, so a corner outside the frame is extrapolated from the
-// visible parts of its two edges (the sample lines are spread over the part of each edge in the
-// frame).
+// visible parts of its two edges.
 //
-// Beyond the dissertation, for sub-pixel accuracy and robustness:
-//  - each sample is the mean over a short band of pixels along the edge (sensor noise);
-//  - the sub-pixel position comes from the colour blend across the edge (the card's share summed
-//    over the transition pixels), because S is not monotonic across an edge between
-//    complementary colours and its gradient alone only places the edge to half a pixel;
-//  - interlaced video (odd rows from the previous field): row walks use even rows only and column
-//    walks deinterlace odd rows with the rule of §2 (dissertation 4.2.4), so the edge found is the
-//    current field's;
-//  - near-black pixels have their saturation computed against a floor (kSaturationDarkFloor).
+// Beyond the dissertation (the reasons beside the code in edge_refinement.cpp): each sample is the
+// mean over a short band along the edge, the sub-pixel position comes from the colour blend across
+// the edge, walks see only the current field of interlaced video, and near-black pixels have their
+// saturation computed against a floor (kSaturationDarkFloor).
 
 #include "vision/geometry.hpp"
 #include "vision/image.hpp"

@@ -1,0 +1,29 @@
+#pragma once
+// The forms the String keys of the schema accept (KeySpec::check): each returns "" when the value
+// is fine, else one line saying what is wrong. Private to the config schema.
+
+#include <string>
+#include <string_view>
+
+namespace firmware::config_schema {
+
+/// `[source] spec`: "auto", "demo", "synthetic", "libcamera[:ID]", "file:PATH", "v4l2:DEVICE".
+std::string checkSourceSpec(std::string_view value);
+/// `[display] spec`: "auto", "drm[:CARD]", "window", "headless:DIR".
+std::string checkDisplaySpec(std::string_view value);
+/// Any path, or empty for "the built-in one".
+std::string checkOptionalPath(std::string_view value);
+/// A file path, not empty.
+std::string checkPath(std::string_view value);
+/// A button action's name (parseButtonAction).
+std::string checkButtonAction(std::string_view value);
+/// "none" or an overlay's name, not empty.
+std::string checkOverlayName(std::string_view value);
+/// "" (no serial console) or an absolute device path.
+std::string checkSerial(std::string_view value);
+/// "", "preferred", "WxH" or "WxH@Hz" (platform::parseDisplayMode).
+std::string checkDisplayMode(std::string_view value);
+/// A directory path, not empty.
+std::string checkDirectory(std::string_view value);
+
+}  // namespace firmware::config_schema
