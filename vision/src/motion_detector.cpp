@@ -47,6 +47,26 @@ inline int pick(bool cond, int a, int b) noexcept
     return b ^ ((a ^ b) & -static_cast<int>(cond));
 }
 
+// The model. Every pixel of a grey image is modelled by K Gaussians (mean, variance, weight), kept
+// sorted by weight. A new value x matches the first (heaviest) distribution with (x - mean)^2 <
+// lambda^2 * variance. Then, with learning rate a:
+//   weights  w_k <- (1 - a) w_k + a M_k   (M_k = 1 for the matched distribution, else 0)
+//   matched  mean <- mean + a (x - mean);  variance <- variance + a ((x - mean)^2 - variance)
+//   no match: the lightest distribution is replaced by (x, initialVariance) with weight taking
+//             what the others lost, i.e. (1 - a) w_old + a.
+// (rho = a for the mean and variance, the usual simplification of Stauffer-Grimson's
+// rho = a * eta(x | mean, sigma), which avoids an exp and a division per pixel.)
+// The background is the first B distributions, B = argmin_b (sum_{k<=b} w_k > T); a pixel whose
+// value matches none of them is foreground. The test uses the model before this frame's update.
+//
+// Fixed-point formats, one buffer of 3K planes of uint16 (weights of distribution 0..K-1, then
+// means, then variances; structure of arrays so the per-pixel update vectorises across pixels):
+//   weight   q15 in uint16 (32768 = 1). The weights always sum to exactly 32768: non-matched
+//            weights decay rounding up, the matched/new one takes the remainder.
+//   mean     q8  in uint16 (grey 0..255 with 8 fraction bits).
+//   variance q8  in uint16 (grey^2, 0..255.99), clamped to [minVariance, maxVariance].
+//   learning rate q16 (1..32767, i.e. up to 0.5); lambda^2 q8.
+// Resolution: with learning rate a, a mean settles within about 1 / (512 a) grey of the data.
 struct Params {
     int alpha;                    // q16
     int threshold;                // T, q15
@@ -54,7 +74,7 @@ struct Params {
     int initVar, minVar, maxVar;  // q8
 };
 
-/// One row of the mixture update (see the header for the model): `src` holds grey values in q8,
+/// One row of the mixture update (the model: above): `src` holds grey values in q8,
 /// `out` receives 1 for foreground, 0 for background.
 /// Every pixel is independent and the body is branch-free (selects as arithmetic), so the
 /// compiler vectorises the loop over x after unrolling the loops over k. On x86-64 it is also
@@ -358,6 +378,9 @@ void boxGeneric(const ConstImageView& src, int factor, const ImageView& dst) noe
 
 }  // namespace
 
+// Grey, not per-channel: a third of the memory and time, which matters more at 25 Hz on the
+// target than the rare motion visible only in chroma (faces and hands differ from the background
+// in luminance too); the stage converts and halves the camera frame in one pass.
 bool downscaleToGray(const ConstImageView& src, int factor, const ImageView& dst) noexcept
 {
     if (factor < 1 || factor > 4 || src.empty() || dst.empty() ||
