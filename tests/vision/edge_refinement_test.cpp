@@ -18,8 +18,16 @@ bool inside(const Quad& q, float x, float y)
     return true;
 }
 
-/// A blue card with anti-aliased edges (4x4 supersampling) on a grey, slightly textured ground.
-ImageBuffer render(const Quad& card, int w, int h, PixelFormat format = PixelFormat::RGB24)
+struct Colours {
+    float card[3];
+    float ground[3];  ///< plus a slight texture
+};
+constexpr Colours kBlueOnGrey = {{40.f, 80.f, 200.f}, {120.f, 120.f, 120.f}};
+
+/// A card with anti-aliased edges (4x4 supersampling) on a slightly textured ground (by default a
+/// blue card on grey).
+ImageBuffer render(const Quad& card, int w, int h, PixelFormat format = PixelFormat::RGB24,
+                   const Colours& colours = kBlueOnGrey)
 {
     ImageBuffer img(w, h, format);
     const int bpp = bytesPerPixel(format);
@@ -31,8 +39,12 @@ ImageBuffer render(const Quad& card, int w, int h, PixelFormat format = PixelFor
                     n += inside(card, float(x) - 0.375f + 0.25f * float(sx),
                                 float(y) - 0.375f + 0.25f * float(sy));
             const float c = float(n) / 16.f;
-            const float g = 120.f + 10.f * std::sin(float(x) * 0.3f) * std::cos(float(y) * 0.2f);
-            const float rgb[3] = {g + c * (40.f - g), g + c * (80.f - g), g + c * (200.f - g)};
+            const float t = 10.f * std::sin(float(x) * 0.3f) * std::cos(float(y) * 0.2f);
+            float rgb[3];
+            for (int k = 0; k < 3; ++k) {
+                const float g = colours.ground[k] + t;
+                rgb[k] = g + c * (colours.card[k] - g);
+            }
             std::uint8_t* p = img.view().row(y) + x * bpp;
             for (int k = 0; k < 3; ++k)
                 p[k] = static_cast<std::uint8_t>(std::lround(rgb[k]));
@@ -77,6 +89,33 @@ TEST(EdgeRefinement, FindsTheTrueCornersFromAnOffsetQuad)
     EdgeRefinement rx;
     ASSERT_TRUE(refineQuad(x.view(), guess, {}, rx));
     EXPECT_LT(maxCornerError(rx.quad, r.quad), 1e-4);
+}
+
+TEST(EdgeRefinement, ChromaticityFindsTheEdgesSaturationDoesNotSee)
+{
+    // A red card on an orange ground: both as saturated, and their blend too (no grey between
+    // them), so saturation has no step at the card's edges; chromaticity does change there.
+    const Colours redOnOrange = {{190.f, 36.f, 44.f}, {220.f, 110.f, 30.f}};
+    const Quad truth = {{{52.3f, 41.7f}, {181.6f, 55.2f}, {170.4f, 148.9f}, {45.1f, 131.3f}}};
+    const ImageBuffer img = render(truth, 240, 190, PixelFormat::RGB24, redOnOrange);
+    Quad guess = truth;
+    const float off[4][2] = {{3, 2}, {-2, 3}, {-3, -2}, {2, -3}};
+    for (int i = 0; i < 4; ++i)
+        guess[i] = {truth[i].x + off[i][0], truth[i].y + off[i][1]};
+    EdgeRefinementOptions o;
+    EdgeRefinement r;
+    ASSERT_TRUE(refineQuad(img.view(), guess, o, r));
+    EXPECT_LT(r.edgesFitted, 3);
+    o.chromaticityStep = 0.2f;
+    ASSERT_TRUE(refineQuad(img.view(), guess, o, r));
+    EXPECT_EQ(r.edgesFitted, 4);
+    EXPECT_LT(maxCornerError(r.quad, truth), 0.5);
+    // On the blue card and grey ground it changes nothing that saturation found.
+    const ImageBuffer grey = render(truth, 240, 190);
+    EdgeRefinement plain, both;
+    ASSERT_TRUE(refineQuad(grey.view(), guess, {}, plain));
+    ASSERT_TRUE(refineQuad(grey.view(), guess, o, both));
+    EXPECT_LT(maxCornerError(plain.quad, both.quad), 0.2);
 }
 
 TEST(EdgeRefinement, RansacIgnoresAnOccluderOnAnEdge)

@@ -369,6 +369,7 @@ const CardObservation& CardTracker::process(const ConstImageView& rgb,
     EdgeRefinementOptions eo;
     eo.normalsPerEdge = o.normalsPerEdge;
     eo.saturationGradient = o.saturationGradient;
+    eo.chromaticityStep = o.chromaticityStep;
     eo.inlierDistance = o.inlierDistance;
     const float scale = std::sqrt(std::max(quadArea(coarse), 1.f));
     eo.searchInside = eo.searchOutside = std::clamp(o.coarseSearch * scale, 6.f, 48.f);

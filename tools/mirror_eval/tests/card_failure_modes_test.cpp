@@ -42,4 +42,39 @@ TEST(CardFailureModes, TheCardPassingNearAPatchOfItsColourDoesNotStretchToIt)
     expectHeld(runScenario("hard", 6, 200, 239), 1.0, 0.95);
 }
 
+// A card in front of something as saturated as itself and of a near hue (a red card on an
+// orange wall): no saturation step anywhere around it (not even the grey of a blend between
+// complementary colours), so step 5 found too few edge points in every frame.
+TEST(CardFailureModes, ACardInFrontOfSomethingAsSaturatedAsItself)
+{
+    const cv::Size size(720, 480);
+    cv::Mat wall(size, CV_8UC3);
+    for (int y = 0; y < size.height; ++y)
+        for (int x = 0; x < size.width; ++x) {
+            const int t = (x / 6 + y / 9) % 3 * 8;                           // a little texture
+            wall.at<cv::Vec3b>(y, x) = cv::Vec3b(30 + t, 110 + t, 220 - t);  // BGR: orange
+        }
+    const cardgen::FrameSpec training = [] {
+        cardgen::FrameSpec s;
+        s.quad = {vision::Point2f{-8.5f, -8.5f}, vision::Point2f{727.5f, -8.5f},
+                  vision::Point2f{727.5f, 487.5f}, vision::Point2f{-8.5f, 487.5f}};
+        s.paint = cardgen::shadeCard({}, cv::Vec3b(190, 36, 44), 0.0, 77u);
+        return s;
+    }();
+    const double focal = 0.9 * 720;
+    auto scene = [&](int i) {
+        if (i == 0)
+            return training;
+        cardgen::CardPose pose{330.0 + 2.0 * i, 230.0 + 0.6 * i, 86.0, 0.2, -0.15, 0.1 + 0.004 * i};
+        cardgen::FrameSpec s;
+        s.quad = cardgen::projectCard(pose, focal);
+        s.paint = cardgen::shadeCard(pose, cv::Vec3b(190, 36, 44), i / 30.0, 77u + i);  // red
+        return s;
+    };
+    std::vector<int> frames;
+    for (int i = 0; i <= 30; ++i)
+        frames.push_back(i);
+    expectHeld(runFrames(wall, scene, frames), 1.0, 0.95);
+}
+
 }  // namespace

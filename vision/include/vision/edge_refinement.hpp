@@ -18,7 +18,9 @@
 //  - interlaced video (odd rows from the previous field): row walks use even rows only and column
 //    walks deinterlace odd rows with the rule of §2 (dissertation 4.2.4), so the edge found is the
 //    current field's;
-//  - near-black pixels have their saturation computed against a floor (kSaturationDarkFloor).
+//  - near-black pixels have their saturation computed against a floor (kSaturationDarkFloor);
+//  - optionally a change of chromaticity marks the edge as well as a step of saturation: a card
+//    in front of something as saturated as itself has no saturation edge.
 
 #include "vision/geometry.hpp"
 #include "vision/image.hpp"
@@ -36,6 +38,9 @@ struct EdgeRefinementOptions {
     float minInlierShare = 0.4f;  ///< an edge needs this share of its sample lines as inliers
     float endMargin = 0.1f;       ///< sample lines avoid this share of the edge at each end
     int band = 2;                 ///< saturation averaged over 2 band + 1 pixels along the edge
+    /// Departure of chromaticity from the walk's start (L1 of r, g, b in 0..1) that marks the
+    /// edge too; 0: saturation only
+    float chromaticityStep = 0.f;
 };
 
 inline constexpr int kMaxNormalsPerEdge = 64;
