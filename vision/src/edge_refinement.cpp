@@ -244,7 +244,9 @@ bool refineQuad(const ConstImageView& rgb, const Quad& quad, const EdgeRefinemen
         float t0 = options.endMargin, t1 = 1.f - options.endMargin;
         clipToFrame(a, ex, ey, static_cast<float>(rgb.width - 1),
                     static_cast<float>(rgb.height - 1), t0, t1);
-        if (t1 - t0 < 2.f / len) {
+        // Too little of the edge in view to tell its direction: it keeps its input line.
+        const float minSpan = std::max(8.f, options.minEdgeSpan * len);
+        if ((t1 - t0) * len < minSpan) {
             lineThrough(a, b, out.lines[e]);
             continue;
         }
@@ -275,17 +277,35 @@ bool refineQuad(const ConstImageView& rgb, const Quad& quad, const EdgeRefinemen
             if (offset < 0.f)
                 continue;
             const float pos = start + static_cast<float>(dir) * offset;
-            pts[count++] = acrossRows ? Point2f{pos, static_cast<float>(y)}
-                                      : Point2f{static_cast<float>(x), pos};
+            const Point2f p = acrossRows ? Point2f{pos, static_cast<float>(y)}
+                                         : Point2f{static_cast<float>(x), pos};
+            // Guided by an expected edge: points far from it belong to something else.
+            if (options.maxSeedDistance > 0.f &&
+                std::fabs(nx * (p.x - a.x) + ny * (p.y - a.y)) > options.maxSeedDistance)
+                continue;
+            pts[count++] = p;
         }
         out.samples += count;
         Line2f line;
+        std::uint8_t isInlier[kMaxNormalsPerEdge];
         const int in = count >= 3 ? fitLineRansac(pts, count, options.inlierDistance,
-                                                  options.ransacIterations, line)
+                                                  options.ransacIterations, line, isInlier)
                                   : 0;
+        // Inliers bunched on a short piece of the edge do not fix its direction either.
+        float lo = 1e30f, hi = -1e30f;
+        for (int k = 0; k < count && in > 0; ++k)
+            if (isInlier[k]) {
+                const float at = (pts[k].x * ex + pts[k].y * ey) / len;
+                lo = std::min(lo, at);
+                hi = std::max(hi, at);
+            }
+        const bool spread = in > 0 && hi - lo >= minSpan;
         const int needed =
             std::max(3, static_cast<int>(std::ceil(options.minInlierShare * normals)));
-        if (in >= needed) {
+        // Guided by an expected edge: a line turned away from it is something else's outline.
+        const bool turned = options.maxSeedDistance > 0.f &&
+                            std::fabs(line.nx * ny - line.ny * nx) > options.maxSeedTurn;
+        if (in >= needed && !turned && spread) {
             // Keep the outward orientation of the input edge.
             if (line.nx * nx + line.ny * ny < 0.f)
                 line = {-line.nx, -line.ny, -line.c};

@@ -20,7 +20,11 @@
 //    current field's;
 //  - near-black pixels have their saturation computed against a floor (kSaturationDarkFloor);
 //  - optionally a change of chromaticity marks the edge as well as a step of saturation: a card
-//    in front of something as saturated as itself has no saturation edge.
+//    in front of something as saturated as itself has no saturation edge;
+//  - an edge whose inliers are bunched on a short piece of it is not fitted (its direction would
+//    be noise), and a refinement can be guided by where the edges are expected (the shape
+//    model's prediction): points far from an expected edge, and lines turned away from it, are
+//    something else's outline (an arm across the card).
 
 #include "vision/geometry.hpp"
 #include "vision/image.hpp"
@@ -41,6 +45,15 @@ struct EdgeRefinementOptions {
     /// Departure of chromaticity from the walk's start (L1 of r, g, b in 0..1) that marks the
     /// edge too; 0: saturation only
     float chromaticityStep = 0.f;
+    /// An edge is fitted only when its inliers (and its part in view) span this share of it
+    /// (at least 8 pixels): points bunched on a short piece do not fix its direction
+    float minEdgeSpan = 0.1f;
+    /// When > 0, the input quad is where the edges are expected: edge points farther than this
+    /// from their input edge are dropped before the line fit (an occluder's outline nearby)
+    float maxSeedDistance = 0.f;
+    /// With maxSeedDistance: a fitted line turned from its input edge by more than this (sine of
+    /// the angle) is not taken; the edge keeps its input line
+    float maxSeedTurn = 0.14f;
 };
 
 inline constexpr int kMaxNormalsPerEdge = 64;
