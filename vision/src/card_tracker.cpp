@@ -58,6 +58,7 @@ struct CardTracker::State {
     Quad filterOrder{};  // the filters' corners in their own (stable) order
     bool filtering = false;
     CardShapeModel shape;
+    CardColorModel recent;  // the model of the last tracked frame (adapted to its light)
 
     void resetTrack() noexcept
     {
@@ -68,10 +69,12 @@ struct CardTracker::State {
         current = trained;
         filtering = false;
         shape.reset();
+        recent = CardColorModel{};
         difference.forget();
         std::memset(mask.view().data, 0, mask.bytes());
     }
 
+    ColorBounds searchBounds() const noexcept;
     Component selectCard(int largestArea) noexcept;
     bool coarseQuad(Quad& out) noexcept;
     QuadFit fitCard(const ConstImageView& rgb, const Quad* coarse, int componentArea,
@@ -82,6 +85,19 @@ struct CardTracker::State {
     const CardObservation& fail(bool wasTracking, const char* why) noexcept;
     const char* problem = "";
 };
+
+/// The colour a search looks for: the trained one (a drifted model is what loses a track), and,
+/// beyond the dissertation, for a while after the card was lost, also the model it was tracked
+/// with last: the light it was lost in (a ramp that clips moves the card's chromaticity out of
+/// the trained band) is most likely the light it comes back in.
+ColorBounds CardTracker::State::searchBounds() const noexcept
+{
+    constexpr unsigned kRecentColourFrames = 150;  // 5 s at 30 frames per second
+    const ColorBounds t = colorBounds(trained, options.threshold);
+    if (!recent.valid || obs.framesSinceGood > kRecentColourFrames)
+        return t;
+    return joinedBounds(t, colorBounds(recent, options.threshold));
+}
 
 /// Step 4's component. While tracking, or just after losing the card, where the shape model
 /// expects it, with the pieces an occluder cut off it (a piece reaching out of there is something
@@ -322,8 +338,7 @@ const CardObservation& CardTracker::process(const ConstImageView& rgb,
         s.difference.updateMask(rgb, chroma, colorBounds(s.current, o.threshold), o.changeThreshold,
                                 mask);
     } else {
-        colorTest(chroma, colorBounds(s.trained, o.threshold), {0, 0, s.size.width, s.size.height},
-                  mask);
+        colorTest(chroma, s.searchBounds(), {0, 0, s.size.width, s.size.height}, mask);
         s.difference.remember(rgb);
     }
 
@@ -335,8 +350,10 @@ const CardObservation& CardTracker::process(const ConstImageView& rgb,
     obs.area = largest.area;
     if (largest.area < o.minAreaFraction * frameArea)
         return s.fail(tracking, "no card-coloured component");
-    if (largest.area > o.maxAreaFraction * frameArea)
+    if (largest.area > o.maxAreaFraction * frameArea) {
+        s.recent = CardColorModel{};  // the trained colour alone from now on
         return s.fail(tracking, "colour model ran away");
+    }
     Quad coarse;
     const bool haveCoarse = s.coarseQuad(coarse);
 
@@ -356,8 +373,9 @@ const CardObservation& CardTracker::process(const ConstImageView& rgb,
     if (measureColorModel(chroma, mask, boundsOf(raw, 0.f), 2, o.minSigma, 32, measured)) {
         colourFit = colorFit(s.trained, measured, o.threshold);
         s.current =
-            blendColorModel(s.trained, tracking ? s.current : s.trained, measured, o.alpha, o.beta);
+            blendColorModel(s.trained, tracking ? s.current : s.recent, measured, o.alpha, o.beta);
     }
+    s.recent = s.current;
 
     if (!tracking && obs.framesSinceGood > 3)
         s.filtering = false;  // a new track: do not drag the old corners along

@@ -101,4 +101,44 @@ TEST(CardFailureModes, ACardInFrontOfSomethingAsSaturatedAsItself)
     expectHeld(runFrames(wall, scene, frames), 1.0, 0.95);
 }
 
+// Lost while the light is up and clipping (the card leaves the view), the card comes back under
+// the same light: its chromaticity is then outside the trained colour's band, and the search
+// with the trained colour alone did not find it until the light went down again.
+TEST(CardFailureModes, TheCardIsFoundAgainUnderTheLightItWasLostIn)
+{
+    const cv::Size size(720, 480);
+    const cv::Mat photo = cardgen::loadBackground(
+        testing_support::sharedData("debian_skimage_faces/astronaut.png"), size);
+    const double focal = 0.9 * 720;
+    const cv::Vec3b magenta(204, 42, 140);
+    auto scene = [&](int i) {
+        cardgen::FrameSpec s;
+        if (i == 0) {
+            s.quad = {vision::Point2f{-8.5f, -8.5f}, vision::Point2f{727.5f, -8.5f},
+                      vision::Point2f{727.5f, 487.5f}, vision::Point2f{-8.5f, 487.5f}};
+            s.paint = cardgen::shadeCard({}, magenta, 0.0, 5u);
+            return s;
+        }
+        // Up to 2.2x over 20 frames; out of view to the right from 26 to 40; back by 50.
+        s.gain = 1.0 + 1.2 * std::min(1.0, i / 20.0);
+        const double away = i < 26   ? 0.0
+                            : i < 34 ? (i - 26) / 8.0
+                            : i < 42 ? 1.0
+                                     : std::max(0.0, (50 - i) / 8.0);
+        cardgen::CardPose pose{300.0 + 520.0 * away, 240.0, 80.0, 0.25, -0.1, 0.12};
+        s.quad = cardgen::projectCard(pose, focal);
+        s.card = cardgen::quadTouchesImage(s.quad, size);
+        s.paint = cardgen::shadeCard(pose, magenta, i / 30.0, 5u + i);
+        return s;
+    };
+    std::vector<int> frames;
+    for (int i = 0; i <= 70; ++i)
+        frames.push_back(i);
+    const TrackerRun run = runFrames(photo, scene, frames);
+    EXPECT_EQ(run.metrics.falseTrackingFrames, 0);
+    EXPECT_LE(run.metrics.maxRecoverFrames, 2) << misses(run);
+    EXPECT_EQ(run.metrics.unrecovered, 0) << misses(run);
+    EXPECT_LE(run.metrics.meanErrPx, 1.0) << misses(run);
+}
+
 }  // namespace
