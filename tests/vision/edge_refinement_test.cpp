@@ -118,6 +118,51 @@ TEST(EdgeRefinement, ChromaticityFindsTheEdgesSaturationDoesNotSee)
     EXPECT_LT(maxCornerError(plain.quad, both.quad), 0.2);
 }
 
+TEST(EdgeRefinement, AGuidedEdgeKeepsItsLineWhenOnlySomethingElsesOutlineIsNear)
+{
+    // The seed's top edge lies 3 px above the card's; a second, tilted "card" edge (a strip
+    // across the top of the card, as an arm's outline) is what an unguided fit finds first.
+    const Quad truth = {{{52.f, 50.f}, {182.f, 50.f}, {182.f, 150.f}, {52.f, 150.f}}};
+    ImageBuffer img = render(truth, 240, 190);
+    for (int y = 0; y < 190; ++y)
+        for (int x = 0; x < 240; ++x) {
+            // A grey strip whose lower side runs from (40, 58) to (200, 90): 11 degrees.
+            const float lower = 58.f + 0.2f * (static_cast<float>(x) - 40.f);
+            if (static_cast<float>(y) < lower && static_cast<float>(y) > lower - 16.f) {
+                std::uint8_t* p = img.view().row(y) + 3 * x;
+                p[0] = p[1] = p[2] = 150;
+            }
+        }
+    Quad seed = truth;
+    seed[0].y -= 3.f;
+    seed[1].y -= 3.f;
+    EdgeRefinementOptions o;
+    o.searchInside = o.searchOutside = 20.f;
+    EdgeRefinement free;
+    ASSERT_TRUE(refineQuad(img.view(), seed, o, free));
+    EXPECT_TRUE(free.fitted[0]);
+    o.maxSeedDistance = 6.f;
+    EdgeRefinement guided;
+    ASSERT_TRUE(refineQuad(img.view(), seed, o, guided));
+    // Guided, the strip's points are dropped (too far) or its line refused (turned): the top
+    // edge is the card's where visible, or the seed's; never the strip's 11-degree line.
+    EXPECT_LT(std::fabs(guided.quad[1].y - truth[1].y), 3.5f);
+    EXPECT_LT(std::fabs(guided.quad[0].y - truth[0].y), 3.5f);
+    EXPECT_EQ(guided.fitted[2], true);
+    EXPECT_GT(std::fabs(free.quad[1].y - truth[1].y), 10.f);  // unguided: the strip's line
+}
+
+TEST(EdgeRefinement, AnEdgeAlmostWhollyOutOfViewIsNotFitted)
+{
+    // The left edge has 4 px in view: too little to tell its direction; it keeps the seed's.
+    const Quad truth = {{{-40.f, 30.f}, {150.f, 20.f}, {160.f, 130.f}, {3.f, 140.f}}};
+    const ImageBuffer img = render(truth, 200, 170);
+    EdgeRefinement r;
+    ASSERT_TRUE(refineQuad(img.view(), truth, {}, r));
+    EXPECT_FALSE(r.fitted[3]);
+    EXPECT_TRUE(r.fitted[0] && r.fitted[1] && r.fitted[2]);
+}
+
 TEST(EdgeRefinement, RansacIgnoresAnOccluderOnAnEdge)
 {
     const Quad truth = {{{40.f, 30.f}, {200.f, 30.f}, {200.f, 150.f}, {40.f, 150.f}}};
