@@ -63,6 +63,22 @@ TEST(CardColorModel, BoundsEqualTheStrictGaussianTest)
     EXPECT_FALSE(matchesColor(colorBounds(CardColorModel{}, t), 0, 0, 0));
 }
 
+TEST(CardColorModel, JoinedBoundsHoldBoth)
+{
+    ColorBounds a, b;
+    a.lo[0] = 10, a.hi[0] = 20, a.lo[1] = 50, a.hi[1] = 60, a.lo[2] = 1, a.hi[2] = 0;  // 2: empty
+    b.lo[0] = 15, b.hi[0] = 30, b.lo[1] = 70, b.hi[1] = 80, b.lo[2] = 5, b.hi[2] = 9;
+    const ColorBounds j = joinedBounds(a, b);
+    EXPECT_EQ(j.lo[0], 10);
+    EXPECT_EQ(j.hi[0], 30);
+    EXPECT_EQ(j.lo[1], 50);  // the gap between them too: bounds are one range a channel
+    EXPECT_EQ(j.hi[1], 80);
+    EXPECT_EQ(j.lo[2], 5);
+    EXPECT_EQ(j.hi[2], 9);
+    EXPECT_TRUE(matchesColor(j, 25, 65, 7));
+    EXPECT_FALSE(matchesColor(j, 25, 65, 10));
+}
+
 TEST(CardColorModel, UpdateFormula)
 {
     CardColorModel trained, prev, cur;

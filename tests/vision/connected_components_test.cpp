@@ -72,6 +72,24 @@ TEST(ConnectedComponents, SelectNearAddsCutOffPieces)
     EXPECT_EQ(l.rowMax()[5], 30);
 }
 
+TEST(ConnectedComponents, SelectNearLeavesOutPiecesReachingOutsideAndAnchorsWhereTheObjectWas)
+{
+    ImageBuffer m(60, 30, PixelFormat::Gray8);
+    fill(m, 2, 2, 15, 15);   // 196: the object, where it was
+    fill(m, 18, 2, 22, 13);  // 60: a piece cut off it, inside the region
+    fill(m, 2, 18, 15, 22);  // 70: touching the region's edge but reaching out of it
+    fill(m, 30, 5, 59, 29);  // 750: the largest of all, away from the region
+    ComponentLabeler l({60, 30});
+    l.label(m.view());
+    EXPECT_EQ(l.largest().area, 750);
+    const Component c = l.selectNear({0, 0, 25, 20}, 16);
+    EXPECT_EQ(c.area, 196 + 60);
+    EXPECT_EQ(l.rowMax()[12], 22);
+    EXPECT_EQ(l.rowMin()[20], -1);
+    // Nothing where the object was: the largest of all.
+    EXPECT_EQ(l.selectNear({0, 25, 10, 5}, 16).area, 750);
+}
+
 TEST(ConnectedComponents, EmptyAndFullMasks)
 {
     ImageBuffer m(33, 7, PixelFormat::Gray8);

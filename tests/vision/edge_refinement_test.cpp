@@ -18,8 +18,16 @@ bool inside(const Quad& q, float x, float y)
     return true;
 }
 
-/// A blue card with anti-aliased edges (4x4 supersampling) on a grey, slightly textured ground.
-ImageBuffer render(const Quad& card, int w, int h, PixelFormat format = PixelFormat::RGB24)
+struct Colours {
+    float card[3];
+    float ground[3];  ///< plus a slight texture
+};
+constexpr Colours kBlueOnGrey = {{40.f, 80.f, 200.f}, {120.f, 120.f, 120.f}};
+
+/// A card with anti-aliased edges (4x4 supersampling) on a slightly textured ground (by default a
+/// blue card on grey).
+ImageBuffer render(const Quad& card, int w, int h, PixelFormat format = PixelFormat::RGB24,
+                   const Colours& colours = kBlueOnGrey)
 {
     ImageBuffer img(w, h, format);
     const int bpp = bytesPerPixel(format);
@@ -31,8 +39,12 @@ ImageBuffer render(const Quad& card, int w, int h, PixelFormat format = PixelFor
                     n += inside(card, float(x) - 0.375f + 0.25f * float(sx),
                                 float(y) - 0.375f + 0.25f * float(sy));
             const float c = float(n) / 16.f;
-            const float g = 120.f + 10.f * std::sin(float(x) * 0.3f) * std::cos(float(y) * 0.2f);
-            const float rgb[3] = {g + c * (40.f - g), g + c * (80.f - g), g + c * (200.f - g)};
+            const float t = 10.f * std::sin(float(x) * 0.3f) * std::cos(float(y) * 0.2f);
+            float rgb[3];
+            for (int k = 0; k < 3; ++k) {
+                const float g = colours.ground[k] + t;
+                rgb[k] = g + c * (colours.card[k] - g);
+            }
             std::uint8_t* p = img.view().row(y) + x * bpp;
             for (int k = 0; k < 3; ++k)
                 p[k] = static_cast<std::uint8_t>(std::lround(rgb[k]));
@@ -77,6 +89,78 @@ TEST(EdgeRefinement, FindsTheTrueCornersFromAnOffsetQuad)
     EdgeRefinement rx;
     ASSERT_TRUE(refineQuad(x.view(), guess, {}, rx));
     EXPECT_LT(maxCornerError(rx.quad, r.quad), 1e-4);
+}
+
+TEST(EdgeRefinement, ChromaticityFindsTheEdgesSaturationDoesNotSee)
+{
+    // A red card on an orange ground: both as saturated, and their blend too (no grey between
+    // them), so saturation has no step at the card's edges; chromaticity does change there.
+    const Colours redOnOrange = {{190.f, 36.f, 44.f}, {220.f, 110.f, 30.f}};
+    const Quad truth = {{{52.3f, 41.7f}, {181.6f, 55.2f}, {170.4f, 148.9f}, {45.1f, 131.3f}}};
+    const ImageBuffer img = render(truth, 240, 190, PixelFormat::RGB24, redOnOrange);
+    Quad guess = truth;
+    const float off[4][2] = {{3, 2}, {-2, 3}, {-3, -2}, {2, -3}};
+    for (int i = 0; i < 4; ++i)
+        guess[i] = {truth[i].x + off[i][0], truth[i].y + off[i][1]};
+    EdgeRefinementOptions o;
+    EdgeRefinement r;
+    ASSERT_TRUE(refineQuad(img.view(), guess, o, r));
+    EXPECT_LT(r.edgesFitted, 3);
+    o.chromaticityStep = 0.2f;
+    ASSERT_TRUE(refineQuad(img.view(), guess, o, r));
+    EXPECT_EQ(r.edgesFitted, 4);
+    EXPECT_LT(maxCornerError(r.quad, truth), 0.5);
+    // On the blue card and grey ground it changes nothing that saturation found.
+    const ImageBuffer grey = render(truth, 240, 190);
+    EdgeRefinement plain, both;
+    ASSERT_TRUE(refineQuad(grey.view(), guess, {}, plain));
+    ASSERT_TRUE(refineQuad(grey.view(), guess, o, both));
+    EXPECT_LT(maxCornerError(plain.quad, both.quad), 0.2);
+}
+
+TEST(EdgeRefinement, AGuidedEdgeKeepsItsLineWhenOnlySomethingElsesOutlineIsNear)
+{
+    // The seed's top edge lies 3 px above the card's; a second, tilted "card" edge (a strip
+    // across the top of the card, as an arm's outline) is what an unguided fit finds first.
+    const Quad truth = {{{52.f, 50.f}, {182.f, 50.f}, {182.f, 150.f}, {52.f, 150.f}}};
+    ImageBuffer img = render(truth, 240, 190);
+    for (int y = 0; y < 190; ++y)
+        for (int x = 0; x < 240; ++x) {
+            // A grey strip whose lower side runs from (40, 58) to (200, 90): 11 degrees.
+            const float lower = 58.f + 0.2f * (static_cast<float>(x) - 40.f);
+            if (static_cast<float>(y) < lower && static_cast<float>(y) > lower - 16.f) {
+                std::uint8_t* p = img.view().row(y) + 3 * x;
+                p[0] = p[1] = p[2] = 150;
+            }
+        }
+    Quad seed = truth;
+    seed[0].y -= 3.f;
+    seed[1].y -= 3.f;
+    EdgeRefinementOptions o;
+    o.searchInside = o.searchOutside = 20.f;
+    EdgeRefinement free;
+    ASSERT_TRUE(refineQuad(img.view(), seed, o, free));
+    EXPECT_TRUE(free.fitted[0]);
+    o.maxSeedDistance = 6.f;
+    EdgeRefinement guided;
+    ASSERT_TRUE(refineQuad(img.view(), seed, o, guided));
+    // Guided, the strip's points are dropped (too far) or its line refused (turned): the top
+    // edge is the card's where visible, or the seed's; never the strip's 11-degree line.
+    EXPECT_LT(std::fabs(guided.quad[1].y - truth[1].y), 3.5f);
+    EXPECT_LT(std::fabs(guided.quad[0].y - truth[0].y), 3.5f);
+    EXPECT_EQ(guided.fitted[2], true);
+    EXPECT_GT(std::fabs(free.quad[1].y - truth[1].y), 10.f);  // unguided: the strip's line
+}
+
+TEST(EdgeRefinement, AnEdgeAlmostWhollyOutOfViewIsNotFitted)
+{
+    // The left edge has 4 px in view: too little to tell its direction; it keeps the seed's.
+    const Quad truth = {{{-40.f, 30.f}, {150.f, 20.f}, {160.f, 130.f}, {3.f, 140.f}}};
+    const ImageBuffer img = render(truth, 200, 170);
+    EdgeRefinement r;
+    ASSERT_TRUE(refineQuad(img.view(), truth, {}, r));
+    EXPECT_FALSE(r.fitted[3]);
+    EXPECT_TRUE(r.fitted[0] && r.fitted[1] && r.fitted[2]);
 }
 
 TEST(EdgeRefinement, RansacIgnoresAnOccluderOnAnEdge)

@@ -104,6 +104,43 @@ const std::vector<ScenarioInfo>& scenarios()
          "50 frames (truth rows with empty corner fields), slides back in from the left and rests. "
          "For recovery metrics. Magenta card.",
          {"dlib_example_faces/2008_002079.jpg", "debian_skimage_faces/astronaut.png"}},
+        {"hard_motion",
+         "Hard family, fast motion: the seed's card (colour, size) over the seed's photograph on "
+         "the seed's 3D path with perspective, 1.8x faster and 15% wider, with rests at the "
+         "start, the middle and the end.",
+         hardBackgrounds()},
+        {"hard_light",
+         "Hard family, light: the whole scene ramps up to 1.45-2.0x (channels clip at 255) and "
+         "down to 0.42-0.65x (or down first), holds, and returns to 1x; the seed's path.",
+         hardBackgrounds()},
+        {"hard_shading",
+         "Hard family, shading: a brightness gradient of +-15-30% across the card, turning "
+         "slowly, and up to 20% darker when tilted; the seed's path.",
+         hardBackgrounds()},
+        {"hard_noise",
+         "Hard family, camera: Gaussian noise of sigma 4-9 grey levels and a lens blur of "
+         "sigma 0.4-0.9 px; the seed's path.",
+         hardBackgrounds()},
+        {"hard_occluder",
+         "Hard family, occluder: a skin-coloured hand with its arm reaches in from the right, "
+         "left or bottom over the card (across its middle, splitting it; over an edge; or over "
+         "a corner), moves across it and withdraws; the seed's path and skin tone.",
+         hardBackgrounds()},
+        {"hard_corner",
+         "Hard family, corner out: one corner (the seed's) is pushed 15-55 px out of the frame "
+         "across the top, bottom, left or right border, held, and brought back; its neighbours "
+         "may follow it out for a few frames.",
+         hardBackgrounds()},
+        {"hard_distractors",
+         "Hard family, distractors: a skin-coloured hand and arm behind the card, and a smaller "
+         "patch of a nearby hue (8-18 degrees off the card's) placed where the card never comes "
+         "within 16 px.",
+         hardBackgrounds()},
+        {"hard",
+         "Hard family, everything at once: fast 3D motion, light ramps that clip, shading across "
+         "the card, camera noise and blur, the hand and arm over the card, a corner out, and the "
+         "distractors (each as in its own member, for the same seed).",
+         hardBackgrounds()},
     };
     return list;
 }
@@ -136,6 +173,18 @@ Scenario::Scenario(const std::string& name, cv::Size size, int frames, std::uint
     std::uniform_real_distribution<double> uni(0.0, kTwoPi);
     for (double& p : phase_)
         p = uni(rng);
+    if (isHardScenario(name))
+        hard_ = std::make_shared<const HardScene>(name, size, frames, seed);
+}
+
+std::vector<std::string> Scenario::backgrounds() const
+{
+    return hard_ ? hard_->backgrounds() : info_->backgrounds;
+}
+
+std::string Scenario::choices() const
+{
+    return hard_ ? hard_->summary() : std::string();
 }
 
 int Scenario::at(int frameOf150) const noexcept
@@ -181,6 +230,8 @@ FrameSpec Scenario::trainingFrame(cv::Vec3b rgb) const
 
 FrameSpec Scenario::frame(int i) const
 {
+    if (hard_)
+        return hard_->frame(i);
     const std::string name = info_->name;
     const double w = size_.width, h = size_.height;
     const double t = i / kFps;

@@ -2,11 +2,15 @@
 // The named card sequences of cardgen: each one stresses one thing the card tracker must survive
 // (perspective motion, light ramps with clipping, sensor noise, gain steps, a hand over the card, a
 // corner leaving the frame, fast interlaced motion, a distractor of similar colour, losing the card
-// and getting it back). Frame 0 of every sequence is the training frame: the card fills the view.
+// and getting it back), and the hard family (hard_scenarios.hpp) whose seed picks colour,
+// background and every difficulty. Frame 0 of every sequence is the training frame: the card
+// fills the view.
 
+#include "hard_scenarios.hpp"
 #include "scene.hpp"
 
 #include <cstdint>
+#include <memory>
 #include <opencv2/core.hpp>
 #include <string>
 #include <vector>
@@ -41,6 +45,10 @@ public:
     cv::Size size() const noexcept { return size_; }
     /// Everything in frame `index` (0 .. frames-1); spec.card false when no card is in view.
     FrameSpec frame(int index) const;
+    /// Background candidates in order (the hard family's start with the seed's pick).
+    std::vector<std::string> backgrounds() const;
+    /// What the seed picked, in words ("" for scenarios whose seed only varies phases and noise).
+    std::string choices() const;
 
 private:
     int at(int frameOf150) const noexcept;  ///< a timeline mark scaled to this length
@@ -54,6 +62,7 @@ private:
     std::uint32_t seed_;
     double focal_;
     double phase_[8];
+    std::shared_ptr<const HardScene> hard_;  ///< the hard family's scene, else null
 };
 
 }  // namespace cardgen

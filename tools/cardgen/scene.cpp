@@ -118,12 +118,24 @@ void drawHand(cv::Mat& bgr, const HandPose& hand)
         const double ty = dy * std::cos(a) + py * std::sin(a);
         caps[4] = {ox, oy, ox + tx * 1.0 * r, oy + ty * 1.0 * r, 0.24 * r};
     }
+    // The arm: a capsule from the wrist backwards (only when asked: the plain hand is unchanged).
+    const bool arm = hand.armLength > 0.0;
+    const Capsule forearm{hand.x - dx * 0.5 * r, hand.y - dy * 0.5 * r,
+                          hand.x - dx * (0.5 + hand.armLength) * r,
+                          hand.y - dy * (0.5 + hand.armLength) * r, 0.72 * r};
     const double reach = 2.6 * r;
-    const int x0 = std::max(0, static_cast<int>(hand.x - reach));
-    const int x1 = std::min(bgr.cols - 1, static_cast<int>(hand.x + reach) + 1);
-    const int y0 = std::max(0, static_cast<int>(hand.y - reach));
-    const int y1 = std::min(bgr.rows - 1, static_cast<int>(hand.y + reach) + 1);
-    const double skin[3] = {138.0, 170.0, 222.0};  // BGR
+    int x0 = std::max(0, static_cast<int>(hand.x - reach));
+    int x1 = std::min(bgr.cols - 1, static_cast<int>(hand.x + reach) + 1);
+    int y0 = std::max(0, static_cast<int>(hand.y - reach));
+    int y1 = std::min(bgr.rows - 1, static_cast<int>(hand.y + reach) + 1);
+    if (arm) {
+        const double ex = forearm.bx, ey = forearm.by, er = forearm.radius + 1.0;
+        x0 = std::max(0, static_cast<int>(std::min(hand.x - reach, ex - er)));
+        x1 = std::min(bgr.cols - 1, static_cast<int>(std::max(hand.x + reach, ex + er)) + 1);
+        y0 = std::max(0, static_cast<int>(std::min(hand.y - reach, ey - er)));
+        y1 = std::min(bgr.rows - 1, static_cast<int>(std::max(hand.y + reach, ey + er)) + 1);
+    }
+    const double* skin = hand.skin;  // BGR
     for (int y = y0; y <= y1; ++y) {
         auto* row = bgr.ptr<cv::Vec3b>(y);
         for (int x = x0; x <= x1; ++x) {
@@ -133,6 +145,10 @@ void drawHand(cv::Mat& bgr, const HandPose& hand)
             double d = (std::hypot(lx / 0.95, ly / 1.05) - r);
             for (const Capsule& c : caps)
                 d = std::min(d, segmentDistance(x, y, c.ax, c.ay, c.bx, c.by) - c.radius);
+            if (arm)
+                d = std::min(d,
+                             segmentDistance(x, y, forearm.ax, forearm.ay, forearm.bx, forearm.by) -
+                                 forearm.radius);
             const double alpha = std::clamp(0.5 - d, 0.0, 1.0);
             if (alpha <= 0.0)
                 continue;
@@ -155,6 +171,8 @@ cv::Mat composeScene(const cv::Mat& background, const FrameSpec& s, const vision
     cv::Mat out = background.clone();
     if (s.distractor)
         platform::drawCardQuad(viewOf(out), distractorQuad, s.distractorPaint);
+    if (s.backHand)
+        drawHand(out, s.backHandPose);
     if (s.card)
         platform::drawCardQuad(viewOf(out), quad, s.paint);
     if (s.hand)
@@ -173,6 +191,8 @@ cv::Mat renderFrame(const cv::Mat& background, const FrameSpec& spec, std::uint6
         for (int y = 1; y < scene.rows; y += 2)
             previous.row(y).copyTo(scene.row(y));
     }
+    if (spec.blurSigma > 0.0)
+        cv::GaussianBlur(scene, scene, cv::Size(0, 0), spec.blurSigma);
     // Light/gain and sensor noise, then the 8-bit converter saturates (clipping at 255).
     cv::Mat f;
     scene.convertTo(f, CV_32FC3, spec.gain);

@@ -40,6 +40,9 @@ struct HandPose {
     double y = 0.0;
     double angle = 0.0;
     double radius = 30.0;  ///< palm radius, pixels
+    /// An arm behind the palm (opposite the fingers), this long in palm radii; 0: a hand alone.
+    double armLength = 0.0;
+    double skin[3] = {138.0, 170.0, 222.0};  ///< BGR
 };
 
 /// Everything visible in one frame.
@@ -52,6 +55,9 @@ struct FrameSpec {
     platform::CardPaint distractorPaint;
     bool hand = false;
     HandPose handPose;
+    /// A skin-coloured hand behind the card (someone else's, a distractor): drawn under the card.
+    bool backHand = false;
+    HandPose backHandPose;
     /// Interlacing: the odd rows show the scene of the previous field (the card, the distractor
     /// and the hand where they were half a frame earlier).
     bool interlace = false;
@@ -60,6 +66,7 @@ struct FrameSpec {
     HandPose previousHandPose;
     double gain = 1.0;        ///< whole-scene light or camera gain; saturates at 255
     double noiseSigma = 1.5;  ///< sensor noise, grey levels (Gaussian, per channel)
+    double blurSigma = 0.0;   ///< lens blur before the sensor (Gaussian, pixels; 0: none)
 };
 
 /// Reads a photograph and scales and crops it to cover `size` (BGR). Throws std::runtime_error

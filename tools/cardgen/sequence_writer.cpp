@@ -25,13 +25,20 @@ std::string colourOf(const platform::CardPaint& p)
 std::string resolveBackground(const ScenarioInfo& info, const std::string& dataDir,
                               const std::string& override)
 {
+    return resolveBackground(info.name, info.backgrounds, dataDir, override);
+}
+
+std::string resolveBackground(const std::string& scenario,
+                              const std::vector<std::string>& candidates,
+                              const std::string& dataDir, const std::string& override)
+{
     if (!override.empty()) {
         if (cv::imread(override, cv::IMREAD_REDUCED_COLOR_8).empty())
             throw std::runtime_error("background " + override + ": cannot read");
         return override;
     }
     std::string tried;
-    for (const std::string& candidate : info.backgrounds) {
+    for (const std::string& candidate : candidates) {
         const std::string path = fs::path(candidate).is_absolute()
                                      ? candidate
                                      : (fs::path(dataDir) / candidate).string();
@@ -40,7 +47,7 @@ std::string resolveBackground(const ScenarioInfo& info, const std::string& dataD
             return path;
         tried += (tried.empty() ? "" : ", ") + path;
     }
-    throw std::runtime_error(std::string("scenario ") + info.name +
+    throw std::runtime_error("scenario " + scenario +
                              ": no readable background photograph (tried " + tried +
                              "; set --data to the shared data folder or give --background)");
 }
@@ -63,7 +70,8 @@ GeneratedSequence generateSequence(const GenerateOptions& o)
     const Scenario scenario(o.scenario, o.size, o.frames, o.seed);
     GeneratedSequence result;
     result.dir = o.outDir;
-    result.background = resolveBackground(scenario.info(), o.dataDir, o.background);
+    result.background =
+        resolveBackground(o.scenario, scenario.backgrounds(), o.dataDir, o.background);
     const cv::Mat background = loadBackground(result.background, o.size);
 
     std::error_code ec;
@@ -110,8 +118,10 @@ GeneratedSequence generateSequence(const GenerateOptions& o)
          << "size: " << o.size.width << "x" << o.size.height << "\n"
          << "seed: " << o.seed << "\n"
          << "background: " << result.background << "\n"
-         << "card colour: " << colourOf(first.paint) << " (RGB, before shading and gain)\n"
-         << "frames without a card in view: " << result.framesWithoutCard << "\n"
+         << "card colour: " << colourOf(first.paint) << " (RGB, before shading and gain)\n";
+    if (!scenario.choices().empty())
+        text << "the seed's choices: " << scenario.choices() << "\n";
+    text << "frames without a card in view: " << result.framesWithoutCard << "\n"
          << "\n"
          << "Frame 0 is the training frame: the card fills the whole view (its corners lie just\n"
          << "outside the image). Train the colour model on all of frame 0.\n"

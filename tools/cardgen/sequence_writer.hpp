@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <opencv2/core.hpp>
 #include <string>
+#include <vector>
 
 namespace cardgen {
 
@@ -30,6 +31,10 @@ struct GeneratedSequence {
 /// Throws std::runtime_error naming what was tried when none can be read.
 std::string resolveBackground(const ScenarioInfo& info, const std::string& dataDir,
                               const std::string& override);
+/// The same over an explicit candidate list (Scenario::backgrounds()).
+std::string resolveBackground(const std::string& scenario,
+                              const std::vector<std::string>& candidates,
+                              const std::string& dataDir, const std::string& override);
 
 /// One truth.csv row: "frame,x0,y0,x1,y1,x2,y2,x3,y3" (3 decimals), or "frame,,,,,,,," when the
 /// frame has no card in view.

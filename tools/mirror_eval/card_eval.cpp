@@ -61,6 +61,7 @@ std::vector<TrackedFrame> runCardTracker(const CardEvalOptions& o, std::size_t t
             t.tracking = true;
             t.quad = state.card->quad;
         }
+        t.problem = card.tracker().lastProblem();
         tracked.push_back(t);
     }
     if (tracked.size() != truthRows)
@@ -78,12 +79,12 @@ void writePerFrame(const std::string& path, const std::vector<TruthRow>& truth,
     std::ofstream out(path);
     if (!out)
         throw std::runtime_error("per-frame output " + path + ": cannot write");
-    out << "frame,tracking,x0,y0,x1,y1,x2,y2,x3,y3,max_err_px\n";
+    out << "frame,tracking,x0,y0,x1,y1,x2,y2,x3,y3,max_err_px,problem\n";
     char line[256];
     for (std::size_t i = 0; i < tracked.size(); ++i) {
         const TrackedFrame& f = tracked[i];
         if (!f.tracking) {
-            std::snprintf(line, sizeof line, "%zu,0,,,,,,,,,\n", i);
+            std::snprintf(line, sizeof line, "%zu,0,,,,,,,,,,%s\n", i, f.problem);
         } else {
             double err = -1.0;
             if (truth[i].hasCard) {
@@ -93,7 +94,7 @@ void writePerFrame(const std::string& path, const std::vector<TruthRow>& truth,
                         err, std::hypot(static_cast<double>(f.quad[k].x) - truth[i].quad[k].x,
                                         static_cast<double>(f.quad[k].y) - truth[i].quad[k].y));
             }
-            std::snprintf(line, sizeof line, "%zu,1,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%s\n",
+            std::snprintf(line, sizeof line, "%zu,1,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%s,\n",
                           i, f.quad[0].x, f.quad[0].y, f.quad[1].x, f.quad[1].y, f.quad[2].x,
                           f.quad[2].y, f.quad[3].x, f.quad[3].y,
                           err < 0 ? "" : std::to_string(err).c_str());

@@ -67,9 +67,12 @@ CardMetrics computeCardMetrics(const std::vector<TruthRow>& truth,
 
     std::vector<double> errors;
     std::vector<char> fullyVisible(static_cast<std::size_t>(n), 0);
+    bool inLostRun = false;
     for (int i = first; i < n; ++i) {
         const TruthRow& t = truth[i];
         const TrackedFrame& f = tracked[i];
+        if (f.tracking)
+            inLostRun = false;
         if (!t.hasCard) {
             ++m.absentFrames;
             m.falseTrackingFrames += f.tracking;
@@ -84,6 +87,8 @@ CardMetrics computeCardMetrics(const std::vector<TruthRow>& truth,
         ++m.scoredFrames;
         if (!f.tracking) {
             ++m.lostFrames;
+            m.lostStretches += !inLostRun;
+            inLostRun = true;
             continue;
         }
         ++m.measuredFrames;
@@ -172,10 +177,10 @@ std::string cardSummaryLine(const CardMetrics& m)
     std::snprintf(line, sizeof line,
                   "card: mean_err_px=%.2f p95_err_px=%.2f within3px=%.3f lost_frames=%d "
                   "max_recover_frames=%d mean_recover_frames=%.2f unrecovered=%d jitter_px=%.3f "
-                  "scored_frames=%d false_tracking_frames=%d",
+                  "scored_frames=%d false_tracking_frames=%d lost_stretches=%d",
                   m.meanErrPx, m.p95ErrPx, m.withinFraction, m.lostFrames, m.maxRecoverFrames,
                   m.meanRecoverFrames, m.unrecovered, m.jitterPx, m.scoredFrames,
-                  m.falseTrackingFrames);
+                  m.falseTrackingFrames, m.lostStretches);
     return line;
 }
 
@@ -199,8 +204,9 @@ std::string cardReport(const CardMetrics& m)
     add(std::snprintf(line, sizeof line, "all 4 corners within 3 px: %.3f (%d of %d scored frames)",
                       m.withinFraction, m.withinFrames, m.scoredFrames));
     add(std::snprintf(line, sizeof line,
-                      "frames lost: %d (scored, not Tracking); tracking with no card in view: %d",
-                      m.lostFrames, m.falseTrackingFrames));
+                      "frames lost: %d (scored, not Tracking) in %d stretches; tracking with no "
+                      "card in view: %d",
+                      m.lostFrames, m.lostStretches, m.falseTrackingFrames));
     add(std::snprintf(line, sizeof line,
                       "frames to recover: max %d, mean %.2f over %d stretches without card or "
                       "track (the first acquisition included); never recovered: %d",

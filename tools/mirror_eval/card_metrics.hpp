@@ -24,6 +24,7 @@ namespace mirror_eval {
 struct TrackedFrame {
     bool tracking = false;  ///< state Tracking with a quad
     vision::Quad quad{};
+    const char* problem = "";  ///< the tracker's reason when not tracking (a static string)
 };
 
 struct CardEvalSettings {
@@ -46,7 +47,10 @@ struct CardMetrics {
     double maxErrPx = 0.0;
     int withinFrames = 0;  ///< scored frames with all 4 corners within withinPx
     double withinFraction = 0.0;
-    int lostFrames = 0;           ///< scored frames not tracking
+    int lostFrames = 0;  ///< scored frames not tracking
+    /// Runs of lost frames: a run starts at a scored frame not tracking and ends at the next
+    /// tracking frame (unscored frames in between, with the card mostly out, do not end it).
+    int lostStretches = 0;
     int falseTrackingFrames = 0;  ///< tracking while the truth has no card
     int recoveries = 0;           ///< stretches of no card / no track that ended in tracking
     int unrecovered = 0;          ///< such stretches still open at the end of the sequence

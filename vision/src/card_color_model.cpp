@@ -68,6 +68,22 @@ ColorBounds colorBounds(const CardColorModel& model, float t) noexcept
     return b;
 }
 
+ColorBounds joinedBounds(const ColorBounds& a, const ColorBounds& b) noexcept
+{
+    ColorBounds out;
+    for (int c = 0; c < 3; ++c) {
+        const bool aEmpty = a.lo[c] > a.hi[c], bEmpty = b.lo[c] > b.hi[c];
+        if (aEmpty || bEmpty) {
+            out.lo[c] = aEmpty ? b.lo[c] : a.lo[c];
+            out.hi[c] = aEmpty ? b.hi[c] : a.hi[c];
+            continue;
+        }
+        out.lo[c] = std::min(a.lo[c], b.lo[c]);
+        out.hi[c] = std::max(a.hi[c], b.hi[c]);
+    }
+    return out;
+}
+
 bool trainColorModel(const ChromaticityPlanes& chroma, Rect region, float minSigma,
                      CardColorModel& out) noexcept
 {

@@ -1,5 +1,7 @@
 #include "vision/card_tracker.hpp"
 
+#include "card_quad_fit.hpp"
+#include "card_shape_model.hpp"
 #include "vision/card_color_model.hpp"
 #include "vision/connected_components.hpp"
 #include "vision/convex_hull.hpp"
@@ -29,85 +31,6 @@ const char* cardStateName(CardState state) noexcept
     return "?";
 }
 
-namespace {
-
-float edgeLength(const Quad& q, int i) noexcept
-{
-    const Point2f a = q[i], b = q[(i + 1) % 4];
-    return std::hypot(b.x - a.x, b.y - a.y);
-}
-
-float quadArea(const Quad& q) noexcept
-{
-    return static_cast<float>(0.5 * signedArea2(q.data(), 4));
-}
-
-/// Clockwise on screen, starting at the corner with the smallest x + y (the top-left one).
-Quad canonicalOrder(const Quad& in) noexcept
-{
-    Quad q = in;
-    if (signedArea2(q.data(), 4) < 0.0)
-        std::swap(q[1], q[3]);
-    int first = 0;
-    for (int i = 1; i < 4; ++i)
-        if (q[i].x + q[i].y < q[first].x + q[first].y)
-            first = i;
-    Quad out;
-    for (int i = 0; i < 4; ++i)
-        out[i] = q[(first + i) % 4];
-    return out;
-}
-
-/// Convex, clockwise and simple: every turn is clockwise (a self-intersecting or concave quad has
-/// a turn the other way).
-bool isConvexClockwise(const Quad& q) noexcept
-{
-    for (int i = 0; i < 4; ++i) {
-        const Point2f a = q[i], b = q[(i + 1) % 4], c = q[(i + 2) % 4];
-        const double cr = (static_cast<double>(b.x) - a.x) * (static_cast<double>(c.y) - b.y) -
-                          (static_cast<double>(b.y) - a.y) * (static_cast<double>(c.x) - b.x);
-        if (!(cr > 0.0))
-            return false;
-    }
-    return true;
-}
-
-float aspectOf(const Quad& q) noexcept
-{
-    const float w = 0.5f * (edgeLength(q, 0) + edgeLength(q, 2));
-    const float h = 0.5f * (edgeLength(q, 1) + edgeLength(q, 3));
-    if (!(w > 0.f) || !(h > 0.f))
-        return 1e9f;
-    return std::max(w, h) / std::min(w, h);
-}
-
-/// Within 2 pixels of the frame's border, or outside it.
-bool nearBorder(Point2f p, Size size) noexcept
-{
-    constexpr float kMargin = 2.f;
-    return p.x < kMargin || p.y < kMargin || p.x > static_cast<float>(size.width - 1) - kMargin ||
-           p.y > static_cast<float>(size.height - 1) - kMargin;
-}
-
-Rect boundsOf(const Quad& q, float grow) noexcept
-{
-    float x0 = q[0].x, x1 = q[0].x, y0 = q[0].y, y1 = q[0].y;
-    for (const Point2f& p : q) {
-        x0 = std::min(x0, p.x);
-        x1 = std::max(x1, p.x);
-        y0 = std::min(y0, p.y);
-        y1 = std::max(y1, p.y);
-    }
-    const float gx = grow * (x1 - x0), gy = grow * (y1 - y0);
-    const int ix0 = static_cast<int>(std::floor(x0 - gx)),
-              iy0 = static_cast<int>(std::floor(y0 - gy));
-    const int ix1 = static_cast<int>(std::ceil(x1 + gx)),
-              iy1 = static_cast<int>(std::ceil(y1 + gy));
-    return {ix0, iy0, ix1 - ix0 + 1, iy1 - iy0 + 1};
-}
-
-}  // namespace
-
 struct CardTracker::State {
     State(Size sz, const CardTrackerOptions& o)
         : size(sz),
@@ -134,12 +57,8 @@ struct CardTracker::State {
     OneEuroFilter filters[8];
     Quad filterOrder{};  // the filters' corners in their own (stable) order
     bool filtering = false;
-    Quad lastGood{};
-    float lastGoodArea = 0.f;
-    float lastGoodAspect = 1.f;
-    float previousArea = 0.f;  // quad area of the previous tracked frame
-    Quad previousQuad{};       // raw quad of the previous tracked frame
-    bool haveLastGood = false;
+    CardShapeModel shape;
+    CardColorModel recent;  // the model of the last tracked frame (adapted to its light)
 
     void resetTrack() noexcept
     {
@@ -149,16 +68,108 @@ struct CardTracker::State {
         obs.mask = mask.view();
         current = trained;
         filtering = false;
-        haveLastGood = false;
+        shape.reset();
+        recent = CardColorModel{};
         difference.forget();
         std::memset(mask.view().data, 0, mask.bytes());
     }
 
+    ColorBounds searchBounds() const noexcept;
+    Component selectCard(int largestArea) noexcept;
+    bool coarseQuad(Quad& out) noexcept;
+    QuadFit fitCard(const ConstImageView& rgb, const Quad* coarse, int componentArea,
+                    bool tracking) const noexcept;
+    void remember(const QuadFit& fit, unsigned missed) noexcept;
     Quad smooth(const Quad& raw, float scale) noexcept;
     void clearOutside(const Quad& q, float margin) noexcept;
     const CardObservation& fail(bool wasTracking, const char* why) noexcept;
     const char* problem = "";
 };
+
+/// The colour a search looks for: the trained one (a drifted model is what loses a track), and,
+/// beyond the dissertation, for a while after the card was lost, also the model it was tracked
+/// with last: the light it was lost in (a ramp that clips moves the card's chromaticity out of
+/// the trained band) is most likely the light it comes back in.
+ColorBounds CardTracker::State::searchBounds() const noexcept
+{
+    constexpr unsigned kRecentColourFrames = 150;  // 5 s at 30 frames per second
+    const ColorBounds t = colorBounds(trained, options.threshold);
+    if (!recent.valid || obs.framesSinceGood > kRecentColourFrames)
+        return t;
+    return joinedBounds(t, colorBounds(recent, options.threshold));
+}
+
+/// Step 4's component. While tracking, or just after losing the card, where the shape model
+/// expects it, with the pieces an occluder cut off it (a piece reaching out of there is something
+/// else of the card's colour); otherwise the largest one.
+Component CardTracker::State::selectCard(int largestArea) noexcept
+{
+    constexpr unsigned kRecentFrames = 3;
+    if (shape.haveLast() && obs.framesSinceGood <= kRecentFrames)
+        return labeler.selectNear(shape.expectedBounds(obs.framesSinceGood),
+                                  std::max(16, largestArea / 20));
+    return labeler.selectLargest();
+}
+
+/// Step 4: convex hull of the selected component -> minimum bounding quad.
+bool CardTracker::State::coarseQuad(Quad& out) noexcept
+{
+    int n = 0;
+    for (int y = 0; y < size.height; ++y) {
+        const int x0 = labeler.rowMin()[y];
+        if (x0 < 0)
+            continue;
+        const int x1 = labeler.rowMax()[y];
+        points[n++] = {static_cast<float>(x0), static_cast<float>(y)};
+        if (x1 != x0)
+            points[n++] = {static_cast<float>(x1), static_cast<float>(y)};
+    }
+    const int hn = convexHull(points.get(), n, hull.get());
+    if (hn < 3 || !minBoundingQuad(hull.get(), std::min(hn, kMaxQuadInputVertices), out, size))
+        return false;
+    out = canonicalOrder(out);
+    return true;
+}
+
+/// Step 5 and the plausibility test, from the colour's coarse quad and, beyond the dissertation,
+/// from the quad the shape model predicts when the colour's is implausible or disagrees with it
+/// (an occluder cut the card, something of its colour joined it): the better of the two.
+QuadFit CardTracker::State::fitCard(const ConstImageView& rgb, const Quad* coarse,
+                                    int componentArea, bool tracking) const noexcept
+{
+    constexpr unsigned kShapeFrames = 3;
+    const unsigned missed = obs.framesSinceGood;
+    const bool haveShape = shape.haveLast() && missed <= kShapeFrames;
+    const Quad predicted = shape.predicted(missed);
+    QuadJudge judge{size,
+                    &options,
+                    componentArea,
+                    tracking,
+                    missed,
+                    shape.lastArea(),
+                    shape.haveGood(),
+                    shape.goodArea(),
+                    shape.goodAspect(),
+                    haveShape ? &predicted : nullptr,
+                    shape.motionTolerance(missed)};
+    QuadFit best;
+    if (coarse)
+        best = fitQuad(rgb, *coarse, judge);
+    if (!haveShape)
+        return best;
+    if (coarse && !best.why && quadDistance(best.raw, predicted) <= shape.tolerance())
+        return best;
+    const QuadFit alt = fitQuad(rgb, predicted, judge, shape.edgeGuide(missed));
+    return betterFit(alt, best) ? alt : best;
+}
+
+void CardTracker::State::remember(const QuadFit& fit, unsigned missed) noexcept
+{
+    bool whole = true;
+    for (const Point2f& p : fit.raw)
+        whole = whole && !nearBorder(p, size);
+    shape.track(fit.raw, fit.area, fit.aspect, missed, whole, fit.refinement.edgesFitted == 4);
+}
 
 // The corners are filtered by a One-Euro filter per coordinate (options: rest cutoff, speed gain,
 // frame rate), matched to the filters' own corner order first.
@@ -244,7 +255,7 @@ const CardObservation& CardTracker::State::fail(bool wasTracking, const char* wh
     } else {
         obs.state = CardState::Searching;
     }
-    obs.hasQuad = haveLastGood;
+    obs.hasQuad = shape.haveGood();
     obs.confidence = 0.f;
     ++obs.framesSinceGood;
     return obs;
@@ -336,115 +347,31 @@ const CardObservation& CardTracker::process(const ConstImageView& rgb,
         s.difference.updateMask(rgb, chroma, colorBounds(s.current, o.threshold), o.changeThreshold,
                                 mask);
     } else {
-        colorTest(chroma, colorBounds(s.trained, o.threshold), {0, 0, s.size.width, s.size.height},
-                  mask);
+        colorTest(chroma, s.searchBounds(), {0, 0, s.size.width, s.size.height}, mask);
         s.difference.remember(rgb);
     }
 
-    // Step 4: largest component (while tracking, with the pieces an occluder cut off it).
+    // Step 4: the card's component, its hull and minimum bounding quad.
     const float frameArea = static_cast<float>(s.size.width) * static_cast<float>(s.size.height);
     s.labeler.label(mask);
     const Component largest = s.labeler.largest();
-    Component comp;
-    if (tracking)
-        comp =
-            s.labeler.selectNear(boundsOf(s.previousQuad, 0.25f), std::max(16, largest.area / 20));
-    else
-        comp = s.labeler.selectLargest();
+    const Component comp = s.selectCard(largest.area);
     obs.area = largest.area;
     if (largest.area < o.minAreaFraction * frameArea)
         return s.fail(tracking, "no card-coloured component");
-    if (largest.area > o.maxAreaFraction * frameArea)
+    if (largest.area > o.maxAreaFraction * frameArea) {
+        s.recent = CardColorModel{};  // the trained colour alone from now on
         return s.fail(tracking, "colour model ran away");
-
-    int n = 0;
-    for (int y = 0; y < s.size.height; ++y) {
-        const int x0 = s.labeler.rowMin()[y];
-        if (x0 < 0)
-            continue;
-        const int x1 = s.labeler.rowMax()[y];
-        s.points[n++] = {static_cast<float>(x0), static_cast<float>(y)};
-        if (x1 != x0)
-            s.points[n++] = {static_cast<float>(x1), static_cast<float>(y)};
     }
-    // The quad fit first removes hull edges along the frame border, so a corner out of view is
-    // extrapolated.
-    const int hn = convexHull(s.points.get(), n, s.hull.get());
     Quad coarse;
-    if (hn < 3 ||
-        !minBoundingQuad(s.hull.get(), std::min(hn, kMaxQuadInputVertices), coarse, s.size))
-        return s.fail(tracking, "degenerate component");
-    coarse = canonicalOrder(coarse);
+    const bool haveCoarse = s.coarseQuad(coarse);
 
-    // Step 5: two passes, a wide one from the coarse quad and a narrow one from its result.
-    EdgeRefinementOptions eo;
-    eo.normalsPerEdge = o.normalsPerEdge;
-    eo.saturationGradient = o.saturationGradient;
-    eo.inlierDistance = o.inlierDistance;
-    const float scale = std::sqrt(std::max(quadArea(coarse), 1.f));
-    eo.searchInside = eo.searchOutside = std::clamp(o.coarseSearch * scale, 6.f, 48.f);
-    EdgeRefinement r1, r2;
-    refineQuad(rgb, coarse, eo, r1);
-    Quad raw = canonicalOrder(r1.quad);
-    eo.searchInside = eo.searchOutside = o.fineSearch;
-    eo.normalsPerEdge = o.fineNormalsPerEdge;
-    const EdgeRefinement* result = &r1;
-    if (isConvexClockwise(raw) && refineQuad(rgb, raw, eo, r2) &&
-        r2.edgesFitted >= r1.edgesFitted) {
-        raw = canonicalOrder(r2.quad);
-        result = &r2;
-    }
-
-    // Plausibility: the beyond-the-dissertation lost-track test. Convex, sane aspect and
-    // perspective, enough edge inliers, no area jump while tracking, the component fills the quad,
-    // and on recovery a shape like the last one seen whole.
-    const float area = quadArea(raw);
-    const float aspect = aspectOf(raw);
-    const float inlierRatio = result->normals > 0 ? static_cast<float>(result->inliers) /
-                                                        static_cast<float>(result->normals)
-                                                  : 0.f;
-    const char* why = nullptr;
-    if (!isConvexClockwise(raw))
-        why = "quad not convex";
-    else if (area < o.minAreaFraction * frameArea || area > frameArea * 1.5f)
-        why = "quad area implausible";
-    else if (aspect > o.maxAspect)
-        why = "absurd aspect";
-    else if (result->edgesFitted < 3 || inlierRatio < o.minInlierRatio)
-        why = "too few edge inliers";
-    for (int i = 0; i < 2 && !why; ++i) {
-        const float a = edgeLength(raw, i), b = edgeLength(raw, i + 2);
-        if (std::min(a, b) < 4.f || std::max(a, b) > o.maxOppositeEdgeRatio * std::min(a, b))
-            why = "absurd perspective";
-    }
-    float shape = 1.f;
-    if (!why && s.haveLastGood) {
-        const float ratio = area / std::max(s.lastGoodArea, 1.f);
-        const float aspectRatio = aspect / std::max(s.lastGoodAspect, 1e-3f);
-        shape = std::exp(-2.f * (std::fabs(std::log(ratio)) + std::fabs(std::log(aspectRatio))));
-        if (!tracking && obs.framesSinceGood <= o.shapeMemoryFrames) {
-            if (ratio > o.maxRecoveryAreaChange || ratio < 1.f / o.maxRecoveryAreaChange ||
-                aspectRatio > 2.f || aspectRatio < 0.5f)
-                why = "shape unlike the last good one";
-        }
-    }
-    if (!why && tracking) {
-        const float jump = area / std::max(s.previousArea, 1.f);
-        if (jump > o.maxAreaJump || jump < 1.f / o.maxAreaJump)
-            why = "area jump";
-    }
-    // An edge without image evidence lying on the frame border: the card is leaving the view and
-    // that edge is unknowable (a tracked card is reported Lost).
-    for (int i = 0; i < 4 && !why; ++i)
-        if (!result->fitted[i] && nearBorder(raw[i], s.size) &&
-            nearBorder(raw[(i + 1) % 4], s.size))
-            why = "card leaving the frame";
-    const float fill = std::clamp(static_cast<float>(comp.area) / std::max(area, 1.f), 0.f, 1.f);
-    if (!why && fill < o.minFill)
-        why = "component does not fill the quad";
-    if (why)
-        return s.fail(tracking, why);
+    // Step 5, and whether the result is the card.
+    const QuadFit fit = s.fitCard(rgb, haveCoarse ? &coarse : nullptr, comp.area, tracking);
+    if (fit.why)
+        return s.fail(tracking, fit.why);
     s.problem = "";
+    const Quad& raw = fit.raw;
 
     // Step 6: the object mask is the card: nothing outside the quad.
     s.clearOutside(raw, 1.0f);
@@ -455,31 +382,22 @@ const CardObservation& CardTracker::process(const ConstImageView& rgb,
     if (measureColorModel(chroma, mask, boundsOf(raw, 0.f), 2, o.minSigma, 32, measured)) {
         colourFit = colorFit(s.trained, measured, o.threshold);
         s.current =
-            blendColorModel(s.trained, tracking ? s.current : s.trained, measured, o.alpha, o.beta);
+            blendColorModel(s.trained, tracking ? s.current : s.recent, measured, o.alpha, o.beta);
     }
+    s.recent = s.current;
 
     if (!tracking && obs.framesSinceGood > 3)
         s.filtering = false;  // a new track: do not drag the old corners along
     obs.state = CardState::Tracking;
     obs.hasQuad = true;
     obs.rawQuad = raw;
-    obs.quad = s.smooth(raw, std::sqrt(std::max(area, 1.f)));
+    obs.quad = s.smooth(raw, std::sqrt(std::max(fit.area, 1.f)));
+    const unsigned missed = obs.framesSinceGood;
     obs.framesSinceGood = 0;
-    obs.confidence = std::clamp(0.4f * std::min(inlierRatio, 1.f) + 0.2f * colourFit +
-                                    0.2f * std::min(fill / 0.9f, 1.f) + 0.2f * shape,
+    obs.confidence = std::clamp(0.4f * std::min(fit.inlierRatio, 1.f) + 0.2f * colourFit +
+                                    0.2f * std::min(fit.fill / 0.9f, 1.f) + 0.2f * fit.shape,
                                 0.f, 1.f);
-    s.previousArea = area;
-    s.previousQuad = raw;
-    // The shape to recover to is one seen whole: not a card half out of the frame.
-    bool whole = true;
-    for (const Point2f& p : raw)
-        whole = whole && !nearBorder(p, s.size);
-    if (whole || !s.haveLastGood) {
-        s.lastGood = raw;
-        s.lastGoodArea = area;
-        s.lastGoodAspect = aspect;
-        s.haveLastGood = true;
-    }
+    s.remember(fit, missed);
     return obs;
 }
 

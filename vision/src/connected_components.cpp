@@ -163,16 +163,23 @@ Component ComponentLabeler::selectLargest() noexcept
 
 Component ComponentLabeler::selectNear(Rect near, int minArea) noexcept
 {
-    for (int i = 0; i < runCount_; ++i) {
-        selected_[i] = 0;
-        if (parent_[i] != i)
-            continue;
-        const Rect& b = box_[i];
-        const bool overlaps = b.x < near.x + near.width && near.x < b.x + b.width &&
-                              b.y < near.y + near.height && near.y < b.y + b.height;
-        selected_[i] =
-            static_cast<std::uint8_t>(i == largestRoot_ || (overlaps && area_[i] >= minArea));
-    }
+    auto meets = [&near](const Rect& b) {
+        return b.x < near.x + near.width && near.x < b.x + b.width && b.y < near.y + near.height &&
+               near.y < b.y + b.height;
+    };
+    auto inside = [&near](const Rect& b) {
+        return b.x >= near.x && b.y >= near.y && b.x + b.width <= near.x + near.width &&
+               b.y + b.height <= near.y + near.height;
+    };
+    int anchor = -1;
+    for (int i = 0; i < runCount_; ++i)
+        if (parent_[i] == i && meets(box_[i]) && (anchor < 0 || area_[i] > area_[anchor]))
+            anchor = i;
+    if (anchor < 0)
+        anchor = largestRoot_;
+    for (int i = 0; i < runCount_; ++i)
+        selected_[i] = static_cast<std::uint8_t>(
+            parent_[i] == i && (i == anchor || (inside(box_[i]) && area_[i] >= minArea)));
     Component c;
     finishSelection(c);
     return c;

@@ -33,12 +33,58 @@ void fieldPixel(const ConstImageView& rgb, int bpp, int x, int y, std::uint8_t o
                      : p[c];
 }
 
+/// Below this sum of R, G and B (per pixel) chromaticity is too noisy to mark an edge.
+constexpr int kChromaticityDarkSum = 3 * 40;
+
+/// Chromaticity of a band-mean colour (1/16 units), 0..4080 per channel: 16 * 255 c / sum; -1 in
+/// the first channel when the colour is too dark for its chromaticity to mean anything.
+void chromaticityOf(const int col[3], int out[3]) noexcept
+{
+    const int sum = col[0] + col[1] + col[2];
+    if (sum < 16 * kChromaticityDarkSum) {
+        out[0] = -1;
+        out[1] = out[2] = 0;
+        return;
+    }
+    for (int c = 0; c < 3; ++c)
+        out[c] = (4080 * col[c] + sum / 2) / sum;
+}
+
+/// How strong the step from walk position k to k + 1 is, in units of the thresholds (1024 = at a
+/// threshold): the larger of the saturation step and the chromaticity step.
+int stepStrength(const int* s, const int (*ch)[3], int k, int thresholdS, int thresholdC) noexcept
+{
+    const int ds = std::abs(s[k + 1] - s[k]) * 1024 / thresholdS;
+    if (thresholdC <= 0 || ch[k][0] < 0 || ch[k + 1][0] < 0)
+        return ds;
+    const int dc = (std::abs(ch[k + 1][0] - ch[k][0]) + std::abs(ch[k + 1][1] - ch[k][1]) +
+                    std::abs(ch[k + 1][2] - ch[k][2])) *
+                   1024 / thresholdC;
+    return std::max(ds, dc);
+}
+
+/// L1 distance of a chromaticity from a reference (the walk's first two steps, summed: 2x); 0
+/// when either is too dark to tell.
+int chromaticityDeparture(const int ch[3], const int ref2[3]) noexcept
+{
+    if (ch[0] < 0 || ref2[0] < 0)
+        return 0;
+    return std::abs(2 * ch[0] - ref2[0]) + std::abs(2 * ch[1] - ref2[1]) +
+           std::abs(2 * ch[2] - ref2[2]);
+}
+
 /// Walks one sample line: from (x, y) in steps of (dx, dy) (one of them 0, the other +-1) for at
 /// most `steps` pixels. Each step's saturation (and colour) is the mean over a short band of
 /// 2 * band + 1 pixels that follows the edge's direction (offset `slope` pixels along the walk per
 /// pixel across it), which cuts sensor noise without blurring the edge.
 ///
-/// The edge is where the saturation gradient first exceeds `threshold`. Its sub-pixel position
+/// The edge is where the saturation gradient first exceeds `threshold` (§2 step 5) or, beyond the
+/// dissertation, where the chromaticity has left that of the walk's start (the card, locally: the
+/// shading of the card does not change it) by more than `chromaThreshold` (L1, 16 * 255 units): a
+/// card in front of a background as saturated as itself (leaves, a coloured shirt) has no
+/// saturation edge, but its chromaticity still changes there. A departure from the start rather
+/// than a step between neighbours: sensor noise on a dark card makes single steps, not a lasting
+/// departure. Its sub-pixel position
 /// comes from the colours around it, not from S: across a box-filtered (anti-aliased or slightly
 /// blurred) edge each pixel is a blend of the card colour (2 steps before the gradient peak) and
 /// the background colour (3 steps after it), so the card's share summed over the transition is
@@ -46,11 +92,12 @@ void fieldPixel(const ConstImageView& rgb, int bpp, int x, int y, std::uint8_t o
 /// between complementary colours (the blend is grey), so its gradient would only place the edge
 /// at half-pixel steps. Returns the offset (in steps from the start), or -1.
 float walk(const ConstImageView& rgb, int bpp, int x, int y, int dx, int dy, int steps, int band,
-           float slope, int threshold) noexcept
+           float slope, int threshold, int chromaThreshold) noexcept
 {
     // Saturation and colour in 1/16 units so the band mean keeps some fraction.
     int s[kMaxWalk];
     int col[kMaxWalk][3];
+    int ch[kMaxWalk][3];
     int offsets[2 * kMaxBand + 1];
     const int b = std::clamp(band, 0, kMaxBand);
     // A horizontal walk's band uses every other row: with interlaced video (odd rows from the
@@ -84,14 +131,27 @@ float walk(const ConstImageView& rgb, int bpp, int x, int y, int dx, int dy, int
         col[n][0] = (c0 * 16 + half) / d;
         col[n][1] = (c1 * 16 + half) / d;
         col[n][2] = (c2 * 16 + half) / d;
+        if (chromaThreshold > 0)
+            chromaticityOf(col[n], ch[n]);
     }
     threshold *= 16;
-    // g_k = s_{k+1} - s_k sits half-way between the two pixels.
+    int ref2[3] = {0, 0, 0};  // the start's chromaticity, twice (two steps summed)
+    if (chromaThreshold > 0 && n >= 2) {
+        for (int c = 0; c < 3; ++c)
+            ref2[c] = ch[0][c] + ch[1][c];
+        if (ch[0][0] < 0 || ch[1][0] < 0)
+            ref2[0] = -1;
+    }
+    // g_k, the step from k to k + 1, sits half-way between the two pixels.
     for (int k = 0; k + 1 < n; ++k) {
-        if (std::abs(s[k + 1] - s[k]) < threshold)
+        const bool saturationEdge = std::abs(s[k + 1] - s[k]) >= threshold;
+        const bool chromaEdge = chromaThreshold > 0 && k >= 1 &&
+                                chromaticityDeparture(ch[k + 1], ref2) >= 2 * chromaThreshold;
+        if (!saturationEdge && !chromaEdge)
             continue;
         int m = k;
-        while (m + 2 < n && std::abs(s[m + 2] - s[m + 1]) > std::abs(s[m + 1] - s[m]))
+        while (m + 2 < n && stepStrength(s, ch, m + 1, threshold, chromaThreshold) >
+                                stepStrength(s, ch, m, threshold, chromaThreshold))
             ++m;
         const int first = m - 2, last = m + 3;  // pure card, pure background
         if (first < 0 || last >= n)
@@ -156,6 +216,10 @@ bool refineQuad(const ConstImageView& rgb, const Quad& quad, const EdgeRefinemen
         return false;
     const int threshold =
         std::max(1, static_cast<int>(std::lround(options.saturationGradient * 255.f)));
+    const int chromaThreshold =
+        options.chromaticityStep > 0.f
+            ? std::max(1, static_cast<int>(std::lround(options.chromaticityStep * 4080.f)))
+            : 0;
     const int normals = std::clamp(options.normalsPerEdge, 2, kMaxNormalsPerEdge);
     // Never start past the middle of the card: the far edge would be found instead.
     const float inside = std::min(options.searchInside, 0.35f * shortest);
@@ -180,7 +244,9 @@ bool refineQuad(const ConstImageView& rgb, const Quad& quad, const EdgeRefinemen
         float t0 = options.endMargin, t1 = 1.f - options.endMargin;
         clipToFrame(a, ex, ey, static_cast<float>(rgb.width - 1),
                     static_cast<float>(rgb.height - 1), t0, t1);
-        if (t1 - t0 < 2.f / len) {
+        // Too little of the edge in view to tell its direction: it keeps its input line.
+        const float minSpan = std::max(8.f, options.minEdgeSpan * len);
+        if ((t1 - t0) * len < minSpan) {
             lineThrough(a, b, out.lines[e]);
             continue;
         }
@@ -207,21 +273,39 @@ bool refineQuad(const ConstImageView& rgb, const Quad& quad, const EdgeRefinemen
                 continue;
             ++out.normals;
             const float offset = walk(rgb, bpp, x, y, acrossRows ? dir : 0, acrossRows ? 0 : dir,
-                                      steps, options.band, slope, threshold);
+                                      steps, options.band, slope, threshold, chromaThreshold);
             if (offset < 0.f)
                 continue;
             const float pos = start + static_cast<float>(dir) * offset;
-            pts[count++] = acrossRows ? Point2f{pos, static_cast<float>(y)}
-                                      : Point2f{static_cast<float>(x), pos};
+            const Point2f p = acrossRows ? Point2f{pos, static_cast<float>(y)}
+                                         : Point2f{static_cast<float>(x), pos};
+            // Guided by an expected edge: points far from it belong to something else.
+            if (options.maxSeedDistance > 0.f &&
+                std::fabs(nx * (p.x - a.x) + ny * (p.y - a.y)) > options.maxSeedDistance)
+                continue;
+            pts[count++] = p;
         }
         out.samples += count;
         Line2f line;
+        std::uint8_t isInlier[kMaxNormalsPerEdge];
         const int in = count >= 3 ? fitLineRansac(pts, count, options.inlierDistance,
-                                                  options.ransacIterations, line)
+                                                  options.ransacIterations, line, isInlier)
                                   : 0;
+        // Inliers bunched on a short piece of the edge do not fix its direction either.
+        float lo = 1e30f, hi = -1e30f;
+        for (int k = 0; k < count && in > 0; ++k)
+            if (isInlier[k]) {
+                const float at = (pts[k].x * ex + pts[k].y * ey) / len;
+                lo = std::min(lo, at);
+                hi = std::max(hi, at);
+            }
+        const bool spread = in > 0 && hi - lo >= minSpan;
         const int needed =
             std::max(3, static_cast<int>(std::ceil(options.minInlierShare * normals)));
-        if (in >= needed) {
+        // Guided by an expected edge: a line turned away from it is something else's outline.
+        const bool turned = options.maxSeedDistance > 0.f &&
+                            std::fabs(line.nx * ny - line.ny * nx) > options.maxSeedTurn;
+        if (in >= needed && !turned && spread) {
             // Keep the outward orientation of the input edge.
             if (line.nx * nx + line.ny * ny < 0.f)
                 line = {-line.nx, -line.ny, -line.c};

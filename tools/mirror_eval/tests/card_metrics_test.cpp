@@ -121,7 +121,8 @@ TEST(CardMetrics, TrackLostWhileInViewAndNeverRecovered)
     const auto m = computeCardMetrics(truth, tracked, settings());
     EXPECT_EQ(m.falseTrackingFrames, 1);
     EXPECT_EQ(m.lostFrames, 6);
-    EXPECT_EQ(m.recoveries, 2);  // frame 1's stretch (recovered at 2, 0 frames) and 3..5
+    EXPECT_EQ(m.lostStretches, 2);  // 3..5 and 8..10
+    EXPECT_EQ(m.recoveries, 2);     // frame 1's stretch (recovered at 2, 0 frames) and 3..5
     EXPECT_EQ(m.maxRecoverFrames, 3);
     EXPECT_DOUBLE_EQ(m.meanRecoverFrames, 1.5);
     EXPECT_EQ(m.unrecovered, 1);
@@ -141,7 +142,8 @@ TEST(CardMetrics, CardMostlyOutOfViewIsNotScored)
     const auto m = computeCardMetrics(truth, tracked, settings());
     EXPECT_EQ(m.scoredFrames, 3);  // 1, 4, 5
     EXPECT_EQ(m.partialFrames, 2);
-    EXPECT_EQ(m.lostFrames, 1);  // 4
+    EXPECT_EQ(m.lostFrames, 1);     // 4
+    EXPECT_EQ(m.lostStretches, 1);  // 4 (2 and 3 are not scored)
     EXPECT_EQ(m.recoveries, 1);
     EXPECT_EQ(m.maxRecoverFrames, 1);  // fully visible at 4, tracking at 5
     EXPECT_DOUBLE_EQ(m.meanErrPx, 0.0);

@@ -24,6 +24,9 @@ struct ColorBounds {
 /// Integer bounds equivalent to |x - mu| < t sigma for integer x.
 ColorBounds colorBounds(const CardColorModel& model, float t) noexcept;
 
+/// The smallest bounds holding both (per channel; an empty channel of one gives the other's).
+ColorBounds joinedBounds(const ColorBounds& a, const ColorBounds& b) noexcept;
+
 inline bool matchesColor(const ColorBounds& b, std::uint8_t r, std::uint8_t g,
                          std::uint8_t bl) noexcept
 {

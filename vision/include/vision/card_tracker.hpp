@@ -59,6 +59,7 @@ struct CardTrackerOptions {
     float minFill = 0.3f;               ///< component pixels / quad area below this: implausible
     float maxRecoveryAreaChange = 3.f;  ///< recovery: area within this factor of the last good
     unsigned shapeMemoryFrames = 45;  ///< after this many lost frames any plausible shape recovers
+    float chromaticityStep = 0.2f;    ///< step 5: an edge also where chromaticity departs this much
 };
 
 struct CardObservation {

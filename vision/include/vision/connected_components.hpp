@@ -33,8 +33,11 @@ public:
 
     /// After label(): the largest component (area 0 when there is none).
     Component largest() const noexcept;
-    /// After label(): components with an area of at least `minArea` whose bounding box intersects
-    /// `near`, plus the largest one, merged into one selection. Returns their total area.
+    /// After label(): the object where it was, with the pieces an occluder cut off it. The anchor
+    /// is the largest component whose bounding box intersects `near` (the largest of all when none
+    /// does); added to it is every other component of at least `minArea` pixels whose bounding box
+    /// lies inside `near` (a piece poking out of where the object can be is something else).
+    /// Returns the selection's total area.
     Component selectNear(Rect near, int minArea) noexcept;
     /// After label(): selects only the largest component.
     Component selectLargest() noexcept;

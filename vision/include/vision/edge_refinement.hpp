@@ -11,8 +11,10 @@
 //
 // Beyond the dissertation (the reasons beside the code in edge_refinement.cpp): each sample is the
 // mean over a short band along the edge, the sub-pixel position comes from the colour blend across
-// the edge, walks see only the current field of interlaced video, and near-black pixels have their
-// saturation computed against a floor (kSaturationDarkFloor).
+// the edge, walks see only the current field of interlaced video, near-black pixels have their
+// saturation computed against a floor (kSaturationDarkFloor), optionally a change of chromaticity
+// marks an edge too, an edge whose inliers bunch on a short piece is not fitted, and a refinement
+// can be guided by where the shape model expects the edges.
 
 #include "vision/geometry.hpp"
 #include "vision/image.hpp"
@@ -30,6 +32,18 @@ struct EdgeRefinementOptions {
     float minInlierShare = 0.4f;  ///< an edge needs this share of its sample lines as inliers
     float endMargin = 0.1f;       ///< sample lines avoid this share of the edge at each end
     int band = 2;                 ///< saturation averaged over 2 band + 1 pixels along the edge
+    /// Departure of chromaticity from the walk's start (L1 of r, g, b in 0..1) that marks the
+    /// edge too; 0: saturation only
+    float chromaticityStep = 0.f;
+    /// An edge is fitted only when its inliers (and its part in view) span this share of it
+    /// (at least 8 pixels): points bunched on a short piece do not fix its direction
+    float minEdgeSpan = 0.1f;
+    /// When > 0, the input quad is where the edges are expected: edge points farther than this
+    /// from their input edge are dropped before the line fit (an occluder's outline nearby)
+    float maxSeedDistance = 0.f;
+    /// With maxSeedDistance: a fitted line turned from its input edge by more than this (sine of
+    /// the angle) is not taken; the edge keeps its input line
+    float maxSeedTurn = 0.14f;
 };
 
 inline constexpr int kMaxNormalsPerEdge = 64;

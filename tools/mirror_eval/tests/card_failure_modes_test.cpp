@@ -1,0 +1,144 @@
+// The card tracker on the ways it used to let go of the card or follow something else, each on
+// frames cardgen renders here (nothing is read from disk but the background photographs): the
+// hard family's scenes (seeds chosen because the tracker failed on them) and scenes made for one
+// cause.
+
+#include "card_run.hpp"
+#include "scene.hpp"
+#include "test_paths.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <opencv2/core.hpp>
+
+namespace {
+
+using card_test::misses;
+using card_test::runFrames;
+using card_test::runScenario;
+using card_test::TrackerRun;
+
+void expectHeld(const TrackerRun& run, double maxMeanErr, double minWithin)
+{
+    const mirror_eval::CardMetrics& m = run.metrics;
+    EXPECT_EQ(m.lostFrames, 0) << misses(run);
+    EXPECT_LE(m.meanErrPx, maxMeanErr) << misses(run);
+    EXPECT_GE(m.withinFraction, minWithin) << misses(run);
+    EXPECT_EQ(m.falseTrackingFrames, 0);
+}
+
+// Step 4's component while tracking: a patch of a nearby hue below the card joined it (its box
+// met the grown box of the last quad), so every tracked frame fitted a quad over both and was
+// lost, and the next search (largest component alone) found the card again.
+TEST(CardFailureModes, APieceOfTheCardsColourBesideItIsNotPartOfIt)
+{
+    expectHeld(runScenario("hard", 9, 1, 24), 1.0, 0.95);
+}
+
+// The same, the patch joining only while the card passes near it: the quad stretched to it.
+TEST(CardFailureModes, TheCardPassingNearAPatchOfItsColourDoesNotStretchToIt)
+{
+    expectHeld(runScenario("hard", 6, 200, 239), 1.0, 0.95);
+}
+
+// An arm across the middle cut the card in two and the top piece was too thin to join: the
+// quad of the bottom half (the arm's straight edge taken for the card's) was kept for 20 frames.
+TEST(CardFailureModes, AnArmAcrossTheCardDoesNotHalveIt)
+{
+    expectHeld(runScenario("hard", 7, 95, 126), 1.5, 0.9);
+}
+
+// A hand over the bottom-right corner: the component's hull lost that corner, the minimum
+// bounding quad put it 70 px away, the refined quad kept the wrong line for the hidden edge.
+TEST(CardFailureModes, AHandOverACornerDoesNotPullTheQuadAway)
+{
+    expectHeld(runScenario("hard", 4, 95, 135), 1.0, 0.95);
+}
+
+// Found again as it came back into view, the card's one visible piece of an edge (4 px) gave a
+// quad with a corner 400 px outside the frame, followed for frames after. (A guard: the tracker
+// before the shape model lost the card here instead; the second seed made this possible.)
+TEST(CardFailureModes, ACornerFarOutOfViewIsNotGuessedWhenFindingTheCardAgain)
+{
+    const TrackerRun run = runScenario("hard", 4, 160, 195);
+    EXPECT_EQ(run.metrics.falseTrackingFrames, 0);
+    EXPECT_LE(run.metrics.maxErrPx, 12.0) << misses(run);
+}
+
+// A card in front of something as saturated as itself and of a near hue (a red card on an
+// orange wall): no saturation step anywhere around it (not even the grey of a blend between
+// complementary colours), so step 5 found too few edge points in every frame.
+TEST(CardFailureModes, ACardInFrontOfSomethingAsSaturatedAsItself)
+{
+    const cv::Size size(720, 480);
+    cv::Mat wall(size, CV_8UC3);
+    for (int y = 0; y < size.height; ++y)
+        for (int x = 0; x < size.width; ++x) {
+            const int t = (x / 6 + y / 9) % 3 * 8;                           // a little texture
+            wall.at<cv::Vec3b>(y, x) = cv::Vec3b(30 + t, 110 + t, 220 - t);  // BGR: orange
+        }
+    const cardgen::FrameSpec training = [] {
+        cardgen::FrameSpec s;
+        s.quad = {vision::Point2f{-8.5f, -8.5f}, vision::Point2f{727.5f, -8.5f},
+                  vision::Point2f{727.5f, 487.5f}, vision::Point2f{-8.5f, 487.5f}};
+        s.paint = cardgen::shadeCard({}, cv::Vec3b(190, 36, 44), 0.0, 77u);
+        return s;
+    }();
+    const double focal = 0.9 * 720;
+    auto scene = [&](int i) {
+        if (i == 0)
+            return training;
+        cardgen::CardPose pose{330.0 + 2.0 * i, 230.0 + 0.6 * i, 86.0, 0.2, -0.15, 0.1 + 0.004 * i};
+        cardgen::FrameSpec s;
+        s.quad = cardgen::projectCard(pose, focal);
+        s.paint = cardgen::shadeCard(pose, cv::Vec3b(190, 36, 44), i / 30.0, 77u + i);  // red
+        return s;
+    };
+    std::vector<int> frames;
+    for (int i = 0; i <= 30; ++i)
+        frames.push_back(i);
+    expectHeld(runFrames(wall, scene, frames), 1.0, 0.95);
+}
+
+// Lost while the light is up and clipping (the card leaves the view), the card comes back under
+// the same light: its chromaticity is then outside the trained colour's band, and the search
+// with the trained colour alone did not find it until the light went down again.
+TEST(CardFailureModes, TheCardIsFoundAgainUnderTheLightItWasLostIn)
+{
+    const cv::Size size(720, 480);
+    const cv::Mat photo = cardgen::loadBackground(
+        testing_support::sharedData("debian_skimage_faces/astronaut.png"), size);
+    const double focal = 0.9 * 720;
+    const cv::Vec3b magenta(204, 42, 140);
+    auto scene = [&](int i) {
+        cardgen::FrameSpec s;
+        if (i == 0) {
+            s.quad = {vision::Point2f{-8.5f, -8.5f}, vision::Point2f{727.5f, -8.5f},
+                      vision::Point2f{727.5f, 487.5f}, vision::Point2f{-8.5f, 487.5f}};
+            s.paint = cardgen::shadeCard({}, magenta, 0.0, 5u);
+            return s;
+        }
+        // Up to 2.2x over 20 frames; out of view to the right from 26 to 40; back by 50.
+        s.gain = 1.0 + 1.2 * std::min(1.0, i / 20.0);
+        const double away = i < 26   ? 0.0
+                            : i < 34 ? (i - 26) / 8.0
+                            : i < 42 ? 1.0
+                                     : std::max(0.0, (50 - i) / 8.0);
+        cardgen::CardPose pose{300.0 + 520.0 * away, 240.0, 80.0, 0.25, -0.1, 0.12};
+        s.quad = cardgen::projectCard(pose, focal);
+        s.card = cardgen::quadTouchesImage(s.quad, size);
+        s.paint = cardgen::shadeCard(pose, magenta, i / 30.0, 5u + i);
+        return s;
+    };
+    std::vector<int> frames;
+    for (int i = 0; i <= 70; ++i)
+        frames.push_back(i);
+    const TrackerRun run = runFrames(photo, scene, frames);
+    EXPECT_EQ(run.metrics.falseTrackingFrames, 0);
+    EXPECT_LE(run.metrics.maxRecoverFrames, 2) << misses(run);
+    EXPECT_EQ(run.metrics.unrecovered, 0) << misses(run);
+    EXPECT_LE(run.metrics.meanErrPx, 1.0) << misses(run);
+}
+
+}  // namespace

@@ -1,0 +1,204 @@
+#include "card_quad_fit.hpp"
+
+#include "card_shape_model.hpp"
+#include "vision/convex_hull.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace vision {
+
+namespace {
+
+float edgeLength(const Quad& q, int i) noexcept
+{
+    const Point2f a = q[i], b = q[(i + 1) % 4];
+    return std::hypot(b.x - a.x, b.y - a.y);
+}
+
+/// Two passes, a wide one from the seed and a narrow one from its result.
+void refineTwice(const ConstImageView& rgb, const Quad& seed, const CardTrackerOptions& o,
+                 float guide, QuadFit& fit) noexcept
+{
+    EdgeRefinementOptions eo;
+    eo.maxSeedDistance = guide;
+    eo.normalsPerEdge = o.normalsPerEdge;
+    eo.saturationGradient = o.saturationGradient;
+    eo.chromaticityStep = o.chromaticityStep;
+    eo.inlierDistance = o.inlierDistance;
+    const float scale = std::sqrt(std::max(quadArea(seed), 1.f));
+    eo.searchInside = eo.searchOutside = std::clamp(o.coarseSearch * scale, 6.f, 48.f);
+    refineQuad(rgb, seed, eo, fit.refinement);
+    fit.raw = canonicalOrder(fit.refinement.quad);
+    eo.searchInside = eo.searchOutside = o.fineSearch;
+    eo.normalsPerEdge = o.fineNormalsPerEdge;
+    if (guide > 0.f)
+        eo.maxSeedDistance = o.fineSearch + 1.f;  // the wide pass's lines are the guide now
+    EdgeRefinement fine;
+    if (isConvexClockwise(fit.raw) && refineQuad(rgb, fit.raw, eo, fine) &&
+        fine.edgesFitted >= fit.refinement.edgesFitted) {
+        fit.raw = canonicalOrder(fine.quad);
+        fit.refinement = fine;
+    }
+}
+
+/// The quad's own plausibility: convex, a sane size, aspect and perspective, edge evidence.
+const char* implausibleQuad(const QuadFit& f, const QuadJudge& j) noexcept
+{
+    const CardTrackerOptions& o = *j.options;
+    const float frameArea = static_cast<float>(j.frame.width) * static_cast<float>(j.frame.height);
+    if (!isConvexClockwise(f.raw))
+        return "quad not convex";
+    if (f.area < o.minAreaFraction * frameArea || f.area > frameArea * 1.5f)
+        return "quad area implausible";
+    if (f.aspect > o.maxAspect)
+        return "absurd aspect";
+    if (f.refinement.edgesFitted < 3 || f.inlierRatio < o.minInlierRatio)
+        return "too few edge inliers";
+    for (int i = 0; i < 2; ++i) {
+        const float a = edgeLength(f.raw, i), b = edgeLength(f.raw, i + 2);
+        if (std::min(a, b) < 4.f || std::max(a, b) > o.maxOppositeEdgeRatio * std::min(a, b))
+            return "absurd perspective";
+    }
+    return nullptr;
+}
+
+/// Plausibility against the card's recent shape and the evidence around it.
+const char* unlikeTheCard(QuadFit& f, const QuadJudge& j) noexcept
+{
+    const CardTrackerOptions& o = *j.options;
+    if (j.haveGood) {
+        const float ratio = f.area / std::max(j.goodArea, 1.f);
+        const float aspectRatio = f.aspect / std::max(j.goodAspect, 1e-3f);
+        f.shape = std::exp(-2.f * (std::fabs(std::log(ratio)) + std::fabs(std::log(aspectRatio))));
+        if (!j.tracking && j.missed <= o.shapeMemoryFrames) {
+            if (ratio > o.maxRecoveryAreaChange || ratio < 1.f / o.maxRecoveryAreaChange ||
+                aspectRatio > 2.f || aspectRatio < 0.5f)
+                return "shape unlike the last good one";
+        }
+    }
+    // A corner out of view is extrapolated from the visible parts of its edges; found afresh
+    // (no track to follow it out), one far outside is a guess from too little of them.
+    if (!j.tracking) {
+        const float far = 0.35f * std::sqrt(std::max(f.area, 1.f));
+        for (const Point2f& p : f.raw)
+            if (std::max({-p.x, -p.y, p.x - static_cast<float>(j.frame.width - 1),
+                          p.y - static_cast<float>(j.frame.height - 1)}) > far)
+                return "corner far out of view";
+    }
+    if (j.tracking) {
+        const float jump = f.area / std::max(j.lastArea, 1.f);
+        if (jump > o.maxAreaJump || jump < 1.f / o.maxAreaJump)
+            return "area jump";
+    }
+
+    // An edge without image evidence lying on the frame border: the card is leaving the view and
+    // that edge is unknowable.
+    for (int i = 0; i < 4; ++i)
+        if (!f.refinement.fitted[i] && nearBorder(f.raw[i], j.frame) &&
+            nearBorder(f.raw[(i + 1) % 4], j.frame))
+            return "card leaving the frame";
+    if (f.fill < o.minFill)
+        return "component does not fill the quad";
+    return nullptr;
+}
+
+}  // namespace
+
+float quadArea(const Quad& q) noexcept
+{
+    return static_cast<float>(0.5 * signedArea2(q.data(), 4));
+}
+
+Quad canonicalOrder(const Quad& in) noexcept
+{
+    Quad q = in;
+    if (signedArea2(q.data(), 4) < 0.0)
+        std::swap(q[1], q[3]);
+    int first = 0;
+    for (int i = 1; i < 4; ++i)
+        if (q[i].x + q[i].y < q[first].x + q[first].y)
+            first = i;
+    Quad out;
+    for (int i = 0; i < 4; ++i)
+        out[i] = q[(first + i) % 4];
+    return out;
+}
+
+bool isConvexClockwise(const Quad& q) noexcept
+{
+    for (int i = 0; i < 4; ++i) {
+        const Point2f a = q[i], b = q[(i + 1) % 4], c = q[(i + 2) % 4];
+        const double cr = (static_cast<double>(b.x) - a.x) * (static_cast<double>(c.y) - b.y) -
+                          (static_cast<double>(b.y) - a.y) * (static_cast<double>(c.x) - b.x);
+        if (!(cr > 0.0))
+            return false;
+    }
+    return true;
+}
+
+float aspectOf(const Quad& q) noexcept
+{
+    const float w = 0.5f * (edgeLength(q, 0) + edgeLength(q, 2));
+    const float h = 0.5f * (edgeLength(q, 1) + edgeLength(q, 3));
+    if (!(w > 0.f) || !(h > 0.f))
+        return 1e9f;
+    return std::max(w, h) / std::min(w, h);
+}
+
+bool nearBorder(Point2f p, Size size) noexcept
+{
+    constexpr float kMargin = 2.f;
+    return p.x < kMargin || p.y < kMargin || p.x > static_cast<float>(size.width - 1) - kMargin ||
+           p.y > static_cast<float>(size.height - 1) - kMargin;
+}
+
+Rect boundsOf(const Quad& q, float grow) noexcept
+{
+    float x0 = q[0].x, x1 = q[0].x, y0 = q[0].y, y1 = q[0].y;
+    for (const Point2f& p : q) {
+        x0 = std::min(x0, p.x);
+        x1 = std::max(x1, p.x);
+        y0 = std::min(y0, p.y);
+        y1 = std::max(y1, p.y);
+    }
+    const float gx = grow * (x1 - x0), gy = grow * (y1 - y0);
+    const int ix0 = static_cast<int>(std::floor(x0 - gx)),
+              iy0 = static_cast<int>(std::floor(y0 - gy));
+    const int ix1 = static_cast<int>(std::ceil(x1 + gx)),
+              iy1 = static_cast<int>(std::ceil(y1 + gy));
+    return {ix0, iy0, ix1 - ix0 + 1, iy1 - iy0 + 1};
+}
+
+QuadFit fitQuad(const ConstImageView& rgb, const Quad& seed, const QuadJudge& judge,
+                float guide) noexcept
+{
+    QuadFit f;
+    refineTwice(rgb, seed, *judge.options, guide, f);
+    // Plausibility: the beyond-the-dissertation lost-track test.
+    f.area = quadArea(f.raw);
+    f.aspect = aspectOf(f.raw);
+    f.inlierRatio = f.refinement.normals > 0 ? static_cast<float>(f.refinement.inliers) /
+                                                   static_cast<float>(f.refinement.normals)
+                                             : 0.f;
+    f.fill = std::clamp(static_cast<float>(judge.componentArea) / std::max(f.area, 1.f), 0.f, 1.f);
+    f.why = implausibleQuad(f, judge);
+    if (!f.why)
+        f.why = unlikeTheCard(f, judge);
+    // A rigid card moves smoothly: corners far from where its motion puts them more likely
+    // follow something else's outline (an arm across the card, a piece of background of its
+    // colour).
+    f.steady = !judge.predicted || quadDistance(f.raw, *judge.predicted) <= judge.motionTolerance;
+    return f;
+}
+
+bool betterFit(const QuadFit& a, const QuadFit& b) noexcept
+{
+    if ((a.why == nullptr) != (b.why == nullptr))
+        return a.why == nullptr;
+    if (a.refinement.edgesFitted != b.refinement.edgesFitted)
+        return a.refinement.edgesFitted > b.refinement.edgesFitted;
+    return a.refinement.inliers > b.refinement.inliers;
+}
+
+}  // namespace vision

@@ -1,0 +1,61 @@
+#pragma once
+// CardShapeModel: the card's shape over time, beyond the dissertation (§2's future work: "recover
+// ... using the shape model and the original trained colour"). It keeps the last tracked quad and
+// how it moved, so the next frame's quad can be predicted (a second seed for the edge refinement
+// when the colour's quad is cut by an occluder or joined by background, and where to look for the
+// card's pieces), and the last quad seen whole, which a recovered quad must resemble. Private to
+// vision/src.
+
+#include "vision/geometry.hpp"
+#include "vision/image.hpp"
+
+namespace vision {
+
+class CardShapeModel {
+public:
+    void reset() noexcept { *this = CardShapeModel{}; }
+
+    /// A tracked frame's raw quad (clockwise from the top-left), its area and aspect, `missed`
+    /// frames after the last tracked one; `whole` when all four corners are in view; `measured`
+    /// when every edge was fitted to the image (a quad with an edge kept from its seed does not
+    /// tell how the card moved: extrapolating it would run away).
+    void track(const Quad& raw, float area, float aspect, unsigned missed, bool whole,
+               bool measured) noexcept;
+
+    bool haveLast() const noexcept { return haveLast_; }
+    float lastArea() const noexcept { return lastArea_; }
+    /// Where the card is expected `missed` frames after the last tracked one: moving on as it
+    /// last moved.
+    Quad predicted(unsigned missed) const noexcept;
+    /// The predicted quad's bounding box grown by the uncertainty of the prediction: where the
+    /// card and the pieces an occluder cut off it can be.
+    Rect expectedBounds(unsigned missed) const noexcept;
+    /// How far the prediction may be from the card's quad before the prediction is tried too.
+    float tolerance() const noexcept;
+    /// How far an edge may be from its predicted place, `missed` frames on.
+    float edgeGuide(unsigned missed) const noexcept;
+    /// How far a corner may be from its predicted place, `missed` frames on, for a rigid card.
+    float motionTolerance(unsigned missed) const noexcept;
+
+    /// The last quad seen whole (the shape a recovery must resemble).
+    bool haveGood() const noexcept { return haveGood_; }
+    float goodArea() const noexcept { return goodArea_; }
+    float goodAspect() const noexcept { return goodAspect_; }
+
+private:
+    Quad last_{};
+    Quad velocity_{};  // per corner of last_, pixels per frame
+    float lastArea_ = 0.f;
+    float speed_ = 0.f;  // largest corner displacement of velocity_
+    bool haveLast_ = false;
+    bool lastMeasured_ = false;
+    bool haveGood_ = false;
+    float goodArea_ = 0.f;
+    float goodAspect_ = 1.f;
+};
+
+/// Largest corner distance between two quads, their corners paired by the best cyclic shift (the
+/// top-left corner can change when the card turns through 45 degrees).
+float quadDistance(const Quad& a, const Quad& b) noexcept;
+
+}  // namespace vision
