@@ -134,7 +134,13 @@ int main(int argc, char** argv)
         ->add_option("--budget", track.budget,
                      "detector windows per frame, 0: whole scans (the mirror ships 5000)")
         ->capture_default_str();
-    trackCmd->add_option("--max-frames", track.maxFrames, "only the first N frames (0: all)");
+    trackCmd
+        ->add_option("--start", track.start,
+                     "start at frame N (in file-name order) cold, as at power-on, and score "
+                     "only frames from N on")
+        ->capture_default_str();
+    trackCmd->add_option("--max-frames", track.maxFrames,
+                         "only the first N frames from --start (0: all)");
     trackCmd->add_flag("--per-frame", track.perFrame, "print every frame's faces and truth");
 
     CLI11_PARSE(app, argc, argv);

@@ -59,6 +59,12 @@ elseif(WHICH STREQUAL "roll")
 elseif(WHICH STREQUAL "track_fgnet")
   run_eval("^track: precision=${num} recall=${num} roll_mean_err_deg=${num}$"
            track --frames ${fgnet}/images --truth ${fgnet}/points --max-frames 8)
+  run_eval("^track: precision=${num} recall=${num} roll_mean_err_deg=${num}$"
+           track --frames ${fgnet}/images --truth ${fgnet}/points --start 990 --max-frames 4)
+  expect_error(bad_start "mirror-eval track: --start 1000: the sequence has only 1000 frames"
+               track --frames ${fgnet}/images --truth ${fgnet}/points --start 1000)
+  expect_error(negative_start "mirror-eval track: --start must be >= 0"
+               track --frames ${fgnet}/images --truth ${fgnet}/points --start -1)
   expect_error(bad_config "mirror-eval track: --config 'x'"
                track --frames ${fgnet}/images --truth ${fgnet}/points --config x)
   file(MAKE_DIRECTORY ${OUT}/empty)
