@@ -142,6 +142,9 @@ int main(int argc, char** argv)
     trackCmd->add_option("--max-frames", track.maxFrames,
                          "only the first N frames from --start (0: all)");
     trackCmd->add_flag("--per-frame", track.perFrame, "print every frame's faces and truth");
+    trackCmd->add_flag("--no-sway", track.noSway,
+                       "faces must move to be shown, as before a calm face's sway counted "
+                       "(FaceTrackerOptions::livenessBySway = false), for comparison");
 
     CLI11_PARSE(app, argc, argv);
     if (cardCmd->parsed())

@@ -89,6 +89,7 @@ TrackScore runConfig(const Config& config, const FaceSequence& seq,
     topt.mode = config.mode;
     topt.useMotionMask = config.motionMask;
     topt.detector.minSize = {o.minSize, o.minSize};
+    topt.livenessBySway = !o.noSway;
     // Detector-only configurations show a face only in a frame whose scan completed: a scan
     // spread over frames would leave them blank in between.
     topt.detectionWindowBudget = config.mode == vision::FaceTrackingMode::None ? 0 : o.budget;
@@ -275,11 +276,12 @@ int runTrackEval(const TrackEvalOptions& o, std::FILE* out, std::FILE* err)
                      staticFaces, cascadePath.c_str());
         std::fprintf(out,
                      "pipeline: MotionStage (frame / %d) + FaceStage, detector windows per frame "
-                     "%s, tracker defaults otherwise; shown faces = TrackedFace::shown()\n",
+                     "%s,%s tracker defaults otherwise; shown faces = TrackedFace::shown()\n",
                      o.downscale,
                      o.budget > 0
                          ? (std::to_string(o.budget) + " (tracking configurations)").c_str()
-                         : "unlimited");
+                         : "unlimited",
+                     o.noSway ? " no LivenessCue (--no-sway)," : "");
         std::fprintf(
             out,
             "match: IoU(%s) >= %.2f, one to one, highest first; "

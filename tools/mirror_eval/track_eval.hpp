@@ -44,6 +44,9 @@ struct TrackEvalOptions {
     int start = 0;
     int maxFrames = 0;      ///< 0: all frames from `start`; else the first N of them (tests)
     bool perFrame = false;  ///< print every frame's shown faces and truth
+    /// The static-face rule without LivenessCue (FaceTrackerOptions::livenessBySway = false):
+    /// how the tracker did before a calm face's sway counted, for comparison.
+    bool noSway = false;
 };
 
 /// Table 6 counts for one configuration.

@@ -11,12 +11,13 @@
 // the wall beside a moving person is inside the mask all the same (the person's motion, a
 // recently seen face, the light changing), so the tracker also asks each track to show it moves:
 // its centre leaving the place it last moved from by a few percent of its size (only flow steps
-// that moved nearly all of its corners count), a box full of motion, or (not yet shown) a turn
-// in place by a few degrees that the image's symmetry agrees with. A photo
-// does none of these: its mask fraction stays at a few percent (lighting changes can raise it,
-// hence the high threshold), and a passer-by drags only the corners nearest to it. A Tentative
-// face is confirmed only if it moved within the last confirmMotionFrames frames (and dropped if
-// it has not after twice that); a shown face still for staticDropFrames frames is dropped.
+// that moved nearly all of its corners count), a box full of motion, (not yet shown) a turn in
+// place by a few degrees that the image's symmetry agrees with, or, for a person standing still,
+// its corners swaying together by a fraction of a pixel (LivenessCue). A photo does none of these:
+// its mask fraction stays at a few percent (lighting changes can raise it, hence the high
+// threshold), and a passer-by drags only the corners nearest to it. A Tentative face is confirmed
+// only if it moved within the last confirmMotionFrames frames (and dropped if it has not after
+// twice that); a shown face still for staticDropFrames frames is dropped.
 
 namespace vision {
 
@@ -75,7 +76,7 @@ bool StaticFaceRule::start(FaceMotion& m, Rect box, bool tiltFound) const noexce
     return m.lastMotionFrame == frame_;
 }
 
-void StaticFaceRule::addFlowStep(FaceMotion& m, const FlowStep& step) const noexcept
+void StaticFaceRule::addFlowStep(FaceMotion& m, const FlowStep& step) noexcept
 {
     // A person never holds perfectly still (a talking head wobbles back and forth, which a net
     // displacement would cancel); a photo's shifts stay in the noise. Re-anchoring the box on a
@@ -88,6 +89,7 @@ void StaticFaceRule::addFlowStep(FaceMotion& m, const FlowStep& step) const noex
         m.path += step.shift;
     if (options_.mode != FaceTrackingMode::Translation && asOne)
         m.turn += toDegrees(step.model.roll());
+    liveness_.addFlowStep(m.sway, step.from, step.to, step.inliers, step.model);
 }
 
 bool StaticFaceRule::movedAsOne(const FlowStep& step) noexcept
@@ -155,7 +157,8 @@ StaticFaceRule::Verdict StaticFaceRule::observe(FaceMotion& m, const TrackedFace
     const bool haveMotion = motion_ != nullptr;
     const float step = std::max(1.0f, options_.minFaceMoveFraction * face.size);
     const bool maskCounts = !(m.tiltFound && face.state == FaceState::Tentative);
-    if (m.path - m.anchor > step ||
+    const bool sways = options_.livenessBySway && LivenessCue::swayed(m.sway);
+    if (m.path - m.anchor > step || sways ||
         (maskCounts && motionFraction(face.box()) >= options_.minFaceMotionFraction) ||
         (haveMotion && face.state == FaceState::Tentative && seen && turnedInImage(m, face))) {
         m.lastMotionFrame = frame_;
