@@ -128,4 +128,12 @@ bool LivenessCue::swayed(const SwayHistory& history) noexcept
     return false;
 }
 
+bool LivenessCue::stirred(const SwayHistory& history) noexcept
+{
+    if (history.size() == 0)
+        return false;
+    const Point2f m = history.latest(0).common;
+    return dot(m, m) >= kMinSway * kMinSway;
+}
+
 }  // namespace vision

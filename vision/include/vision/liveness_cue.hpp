@@ -60,6 +60,10 @@ public:
                      const MotionModel& model) noexcept;
     /// Whether the face's corners swayed together within its history (the header comment).
     static bool swayed(const SwayHistory& history) noexcept;
+    /// Whether its latest step moved the median of its corners by kMinSway at least, further
+    /// than a print's move in one step: a box full of foreground is motion only with it (the
+    /// light changing fills a print's box too).
+    static bool stirred(const SwayHistory& history) noexcept;
 
 private:
     /// Median flow of the inliers on one side of the centre (`half` 0..3: left, right, above,
