@@ -1,6 +1,6 @@
 # End to end: one mirror-eval face sub-command on a small subset of the real data, checking the
 # final line's format (not the numbers: the full runs measure those) and one-line errors.
-#   -DWHICH=detect|roll|track_fgnet|track_composed -DMIRROR_EVAL=... -DDATA=... -DOUT=...
+#   -DWHICH=detect|roll|track_fgnet|track_composed|liveness -DMIRROR_EVAL=... -DDATA=... -DOUT=...
 #   [-DFACEGEN=...] (track_composed)
 file(REMOVE_RECURSE ${OUT})
 file(MAKE_DIRECTORY ${OUT})
@@ -70,6 +70,11 @@ elseif(WHICH STREQUAL "track_fgnet")
   file(MAKE_DIRECTORY ${OUT}/empty)
   expect_error(no_truth "mirror-eval track: truth .*empty: no franck_00000.pts or"
                track --frames ${fgnet}/images --truth ${OUT}/empty)
+elseif(WHICH STREQUAL "liveness")
+  run_eval("^liveness: living_swayed_12=${num} moving_swayed_12=${num} static_swayed=${num} passed_swayed=${num}$"
+           liveness --frames ${fgnet}/images --truth ${fgnet}/points --max-frames 30 --every 5)
+  expect_error(bad_every "mirror-eval liveness: --every must be >= 1"
+               liveness --frames ${fgnet}/images --truth ${fgnet}/points --every 0)
 elseif(WHICH STREQUAL "track_composed")
   execute_process(COMMAND ${FACEGEN} --scenario two --frames 10 --size 320x240 --data ${DATA}
                           --out ${OUT}/seq
