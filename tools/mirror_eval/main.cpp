@@ -1,8 +1,10 @@
 // mirror-eval: evaluates the vision core on recorded or generated sequences with ground truth.
-// One sub-command per tracker: `card` (§2), `detect` and `track` (§3), `roll` (§4).
+// One sub-command per tracker: `card` (§2), `detect` and `track` (§3), `roll` (§4); and
+// `liveness`, the cues that tell a living face from a photograph (§3).
 
 #include "card_eval.hpp"
 #include "detect_eval.hpp"
+#include "liveness_eval.hpp"
 #include "roll_eval.hpp"
 #include "track_eval.hpp"
 
@@ -134,8 +136,35 @@ int main(int argc, char** argv)
         ->add_option("--budget", track.budget,
                      "detector windows per frame, 0: whole scans (the mirror ships 5000)")
         ->capture_default_str();
-    trackCmd->add_option("--max-frames", track.maxFrames, "only the first N frames (0: all)");
+    trackCmd
+        ->add_option("--start", track.start,
+                     "start at frame N (in file-name order) cold, as at power-on, and score "
+                     "only frames from N on")
+        ->capture_default_str();
+    trackCmd->add_option("--max-frames", track.maxFrames,
+                         "only the first N frames from --start (0: all)");
     trackCmd->add_flag("--per-frame", track.perFrame, "print every frame's faces and truth");
+    trackCmd->add_flag("--no-sway", track.noSway,
+                       "faces must move to be shown, as before a calm face's sway counted "
+                       "(FaceTrackerOptions::livenessBySway = false), for comparison");
+
+    mirror_eval::LivenessEvalOptions liveness;
+    CLI::App* livenessCmd = app.add_subcommand(
+        "liveness",
+        "cues that tell a living face from a photograph, measured over each truth face's "
+        "first frames (living: FGNet; moving and static: facegen)");
+    livenessCmd->add_option("--frames", liveness.frames, "folder of frames, in file-name order")
+        ->required();
+    livenessCmd
+        ->add_option("--truth", liveness.truth,
+                     "folder of per-frame truth: FGNet .pts or facegen .txt, by frame stem")
+        ->required();
+    livenessCmd->add_option("--downscale", liveness.downscale, "working resolution = frame / this")
+        ->capture_default_str();
+    livenessCmd->add_option("--every", liveness.every, "a window starts every N frames")
+        ->capture_default_str();
+    livenessCmd->add_option("--max-frames", liveness.maxFrames, "only the first N frames (0: all)");
+    livenessCmd->add_flag("--per-window", liveness.perWindow, "one line per window and step count");
 
     CLI11_PARSE(app, argc, argv);
     if (cardCmd->parsed())
@@ -148,5 +177,7 @@ int main(int argc, char** argv)
         return mirror_eval::runRollEval(roll, stdout, stderr);
     if (trackCmd->parsed())
         return mirror_eval::runTrackEval(track, stdout, stderr);
+    if (livenessCmd->parsed())
+        return mirror_eval::runLivenessEval(liveness, stdout, stderr);
     return 2;
 }

@@ -3,6 +3,7 @@
 #include "detect_eval.hpp"
 #include "error_stats.hpp"
 #include "face_match.hpp"
+#include "face_sequence.hpp"
 #include "face_truth.hpp"
 #include "vision/face_stage.hpp"
 #include "vision/haar_cascade.hpp"
@@ -12,7 +13,6 @@
 #include <algorithm>
 #include <cmath>
 #include <exception>
-#include <filesystem>
 #include <map>
 #include <memory>
 #include <opencv2/core.hpp>
@@ -22,90 +22,6 @@
 namespace mirror_eval {
 
 namespace {
-
-namespace fs = std::filesystem;
-
-/// One truth face of a frame in the common form of both layouts.
-struct TruthFace {
-    int id = 0;
-    BoxF box{};
-    vision::Point2f centre{};
-    double rollDegrees = 0.0;
-    double eyeRollDegrees = 0.0;  ///< FGNet: the eye line's roll (diagnostic)
-    bool moving = true;
-};
-
-struct Sequence {
-    bool composed = false;
-    std::vector<std::string> frames;            ///< paths, in order
-    std::vector<std::vector<TruthFace>> truth;  ///< per frame
-};
-
-Sequence loadSequence(const TrackEvalOptions& o)
-{
-    if (!fs::is_directory(o.frames))
-        throw std::runtime_error("frames " + o.frames + ": not a folder");
-    if (!fs::is_directory(o.truth))
-        throw std::runtime_error("truth " + o.truth + ": not a folder");
-    Sequence s;
-    std::vector<fs::path> frames;
-    for (const auto& e : fs::directory_iterator(o.frames)) {
-        std::string ext = e.path().extension().string();
-        std::transform(ext.begin(), ext.end(), ext.begin(),
-                       [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-        if (e.is_regular_file() && (ext == ".png" || ext == ".jpg" || ext == ".jpeg"))
-            frames.push_back(e.path());
-    }
-    std::sort(frames.begin(), frames.end());
-    if (frames.empty())
-        throw std::runtime_error("frames " + o.frames + ": no PNG/JPEG frames");
-    if (o.maxFrames > 0 && static_cast<int>(frames.size()) > o.maxFrames)
-        frames.resize(static_cast<std::size_t>(o.maxFrames));
-
-    const fs::path first = frames.front().stem();
-    const bool pts = fs::exists(fs::path(o.truth) / (first.string() + ".pts"));
-    const bool txt = fs::exists(fs::path(o.truth) / (first.string() + ".txt"));
-    if (!pts && !txt)
-        throw std::runtime_error("truth " + o.truth + ": no " + first.string() + ".pts or " +
-                                 first.string() + ".txt for frame " +
-                                 frames.front().filename().string());
-    s.composed = txt && !pts;
-    for (const fs::path& f : frames) {
-        const fs::path t = fs::path(o.truth) / (f.stem().string() + (s.composed ? ".txt" : ".pts"));
-        if (!fs::exists(t))
-            throw std::runtime_error("truth " + t.string() + ": missing for frame " +
-                                     f.filename().string());
-        std::vector<TruthFace> faces;
-        if (s.composed) {
-            for (const ComposedFace& c : loadComposedTruth(t.string())) {
-                TruthFace tf;
-                tf.id = c.id;
-                tf.box = squareAbout(c.centre, c.size);
-                tf.centre = c.centre;
-                tf.rollDegrees = c.rollDegrees;
-                tf.moving = c.moving;
-                faces.push_back(tf);
-            }
-        } else {
-            const std::vector<vision::Point2f> points = loadPts(t.string());
-            if (points.size() != 68)
-                throw std::runtime_error(t.string() + ": expected 68 points, got " +
-                                         std::to_string(points.size()));
-            const auto axis = axisPoints68(points);
-            TruthFace tf;
-            tf.box = boundingBox(points);  // the landmarks' bounding box (face_match.hpp)
-            tf.centre = {tf.box.x + 0.5f * tf.box.width, tf.box.y + 0.5f * tf.box.height};
-            tf.rollDegrees = axisRollDegrees(axis[0], axis[1], axis[2]);
-            tf.eyeRollDegrees =
-                std::atan2(points[36].y - points[31].y, points[36].x - points[31].x) * 180.0 /
-                3.14159265358979323846;
-            faces.push_back(tf);
-        }
-        s.frames.push_back(f.string());
-        s.truth.push_back(std::move(faces));
-    }
-    return s;
-}
 
 struct Config {
     const char* name;
@@ -157,8 +73,8 @@ struct Previous {
     double dx = 0.0, dy = 0.0;
 };
 
-TrackScore runConfig(const Config& config, const Sequence& seq, const vision::HaarCascade& cascade,
-                     const TrackEvalOptions& o, std::FILE* out)
+TrackScore runConfig(const Config& config, const FaceSequence& seq,
+                     const vision::HaarCascade& cascade, const TrackEvalOptions& o, std::FILE* out)
 {
     // Frames are decoded one at a time (a long sequence does not fit in memory decoded).
     cv::Mat image = cv::imread(seq.frames.front(), cv::IMREAD_COLOR);
@@ -173,6 +89,7 @@ TrackScore runConfig(const Config& config, const Sequence& seq, const vision::Ha
     topt.mode = config.mode;
     topt.useMotionMask = config.motionMask;
     topt.detector.minSize = {o.minSize, o.minSize};
+    topt.livenessBySway = !o.noSway;
     // Detector-only configurations show a face only in a frame whose scan completed: a scan
     // spread over frames would leave them blank in between.
     topt.detectionWindowBudget = config.mode == vision::FaceTrackingMode::None ? 0 : o.budget;
@@ -339,7 +256,9 @@ int runTrackEval(const TrackEvalOptions& o, std::FILE* out, std::FILE* err)
             throw std::runtime_error("--min-iou must be in (0, 1]");
         if (o.budget < 0)
             throw std::runtime_error("--budget must be >= 0");
-        const Sequence seq = loadSequence(o);
+        if (o.start < 0)
+            throw std::runtime_error("--start must be >= 0");
+        const FaceSequence seq = loadFaceSequence(o.frames, o.truth, o.start, o.maxFrames);
         const std::string cascadePath = o.cascade.empty() ? kDefaultCascade : o.cascade;
         const vision::HaarCascade cascade = vision::loadHaarCascade(cascadePath);
 
@@ -350,18 +269,19 @@ int runTrackEval(const TrackEvalOptions& o, std::FILE* out, std::FILE* err)
                 staticFaces += !t.moving;
         }
         std::fprintf(out,
-                     "track eval: %zu frames of %s, truth %s (%s, %ld truth faces, %ld of "
-                     "them static); cascade %s\n",
-                     seq.frames.size(), o.frames.c_str(), o.truth.c_str(),
+                     "track eval: %zu frames of %s from frame %d (a cold start), truth %s (%s, "
+                     "%ld truth faces, %ld of them static); cascade %s\n",
+                     seq.frames.size(), o.frames.c_str(), o.start, o.truth.c_str(),
                      seq.composed ? "composed multi-face" : "FGNet 68-point", truthFaces,
                      staticFaces, cascadePath.c_str());
         std::fprintf(out,
                      "pipeline: MotionStage (frame / %d) + FaceStage, detector windows per frame "
-                     "%s, tracker defaults otherwise; shown faces = TrackedFace::shown()\n",
+                     "%s,%s tracker defaults otherwise; shown faces = TrackedFace::shown()\n",
                      o.downscale,
                      o.budget > 0
                          ? (std::to_string(o.budget) + " (tracking configurations)").c_str()
-                         : "unlimited");
+                         : "unlimited",
+                     o.noSway ? " no LivenessCue (--no-sway)," : "");
         std::fprintf(
             out,
             "match: IoU(%s) >= %.2f, one to one, highest first; "

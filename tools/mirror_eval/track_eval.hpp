@@ -2,7 +2,9 @@
 // mirror-eval track: the firmware's face pipeline (MotionStage + FaceStage, METHOD.md §3-4) over
 // a folder of frames in order, scored against per-frame truth, for the configurations of the
 // dissertation's Table 6: detector only / + motion mask / + translation tracking / + similarity
-// tracking with roll-warped verification. Shown faces are TrackedFace::shown().
+// tracking with roll-warped verification. Shown faces are TrackedFace::shown(). `start` (the
+// command's --start N) runs from frame N cold: nothing of the frames before it is seen or scored,
+// so a face in view at N must be found and shown as at power-on.
 //
 // Truth layouts (--truth DIR, matched to the frames by file stem):
 //  - FGNet talking face: DIR/<stem>.pts, 68 points. One face, always in view. Truth box = the
@@ -37,8 +39,14 @@ struct TrackEvalOptions {
     /// faces.detection_window_budget = 5000.
     long budget = 0;
     float minIou = 0.5f;
-    int maxFrames = 0;      ///< 0: all frames; else the first N (tests)
+    /// The first frame run and scored (index in file-name order): the pipeline starts there
+    /// cold (fresh motion model and tracker, as at power-on), and earlier frames are not read.
+    int start = 0;
+    int maxFrames = 0;      ///< 0: all frames from `start`; else the first N of them (tests)
     bool perFrame = false;  ///< print every frame's shown faces and truth
+    /// The static-face rule without LivenessCue (FaceTrackerOptions::livenessBySway = false):
+    /// how the tracker did before a calm face's sway counted, for comparison.
+    bool noSway = false;
 };
 
 /// Table 6 counts for one configuration.

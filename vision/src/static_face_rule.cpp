@@ -11,12 +11,15 @@
 // the wall beside a moving person is inside the mask all the same (the person's motion, a
 // recently seen face, the light changing), so the tracker also asks each track to show it moves:
 // its centre leaving the place it last moved from by a few percent of its size (only flow steps
-// that moved nearly all of its corners count), a box full of motion, or (not yet shown) a turn
-// in place by a few degrees that the image's symmetry agrees with. A photo
-// does none of these: its mask fraction stays at a few percent (lighting changes can raise it,
-// hence the high threshold), and a passer-by drags only the corners nearest to it. A Tentative
-// face is confirmed only if it moved within the last confirmMotionFrames frames (and dropped if
-// it has not after twice that); a shown face still for staticDropFrames frames is dropped.
+// that moved nearly all of its corners count), a box full of motion while its corners move, (not
+// yet shown) a turn in place by a few degrees that the image's symmetry agrees with, or, for a
+// person standing still, its corners swaying together by a fraction of a pixel (LivenessCue). A
+// photo does none of these: its mask fraction stays at a few percent (a change of light can fill
+// it, hence the high threshold and the corners that must move with it: facegen seed 23's `one`
+// showed a photo for 247 frames on the mask alone), and a passer-by drags only the corners
+// nearest to it. A Tentative face is confirmed only if it moved within the last
+// confirmMotionFrames frames (and dropped if it has not after twice that); a shown face still for
+// staticDropFrames frames is dropped.
 
 namespace vision {
 
@@ -69,13 +72,17 @@ bool StaticFaceRule::start(FaceMotion& m, Rect box, bool tiltFound) const noexce
     // windows, hence more chance hits on still faces, and a changing light can fill a still
     // face's box with foreground.
     m.tiltFound = tiltFound;
-    m.lastMotionFrame = !m.tiltFound && motionFraction(box) >= options_.minFaceMotionFraction
-                            ? frame_
-                            : frame_ - options_.confirmMotionFrames - 1;
+    // With corners to follow, a box full of foreground counts only once they moved too
+    // (observe()): a change of light fills a photo's box as well.
+    const bool maskAlone = options_.mode == FaceTrackingMode::None;
+    m.lastMotionFrame =
+        maskAlone && !m.tiltFound && motionFraction(box) >= options_.minFaceMotionFraction
+            ? frame_
+            : frame_ - options_.confirmMotionFrames - 1;
     return m.lastMotionFrame == frame_;
 }
 
-void StaticFaceRule::addFlowStep(FaceMotion& m, const FlowStep& step) const noexcept
+void StaticFaceRule::addFlowStep(FaceMotion& m, const FlowStep& step) noexcept
 {
     // A person never holds perfectly still (a talking head wobbles back and forth, which a net
     // displacement would cancel); a photo's shifts stay in the noise. Re-anchoring the box on a
@@ -88,6 +95,7 @@ void StaticFaceRule::addFlowStep(FaceMotion& m, const FlowStep& step) const noex
         m.path += step.shift;
     if (options_.mode != FaceTrackingMode::Translation && asOne)
         m.turn += toDegrees(step.model.roll());
+    liveness_.addFlowStep(m.sway, step.from, step.to, step.inliers, step.model);
 }
 
 bool StaticFaceRule::movedAsOne(const FlowStep& step) noexcept
@@ -154,8 +162,11 @@ StaticFaceRule::Verdict StaticFaceRule::observe(FaceMotion& m, const TrackedFace
         m.anchor = m.path;
     const bool haveMotion = motion_ != nullptr;
     const float step = std::max(1.0f, options_.minFaceMoveFraction * face.size);
-    const bool maskCounts = !(m.tiltFound && face.state == FaceState::Tentative);
-    if (m.path - m.anchor > step ||
+    const bool maskCounts =
+        !(m.tiltFound && face.state == FaceState::Tentative) &&
+        (options_.mode == FaceTrackingMode::None || LivenessCue::stirred(m.sway));
+    const bool sways = options_.livenessBySway && LivenessCue::swayed(m.sway);
+    if (m.path - m.anchor > step || sways ||
         (maskCounts && motionFraction(face.box()) >= options_.minFaceMotionFraction) ||
         (haveMotion && face.state == FaceState::Tentative && seen && turnedInImage(m, face))) {
         m.lastMotionFrame = frame_;

@@ -2,7 +2,8 @@
 // StaticFaceRule: FaceTracker drops faces that never move (posters and photos on the wall), the
 // dissertation's rule that static regions are not faces (METHOD.md §3, "Detection"; 5.1.3),
 // taken from the search mask to the tracks. A face shows it moves by its corners carrying its
-// centre away as one, by a box full of motion, or by turning in place as its image agrees.
+// centre away as one, by a box full of motion, by turning in place as its image agrees, or (a
+// person standing still) by its corners swaying together as only a living face's do (LivenessCue).
 // Private to vision/src.
 //
 // Use: each track keeps a FaceMotion. Per frame: beginFrame(); start() for a new track;
@@ -12,6 +13,7 @@
 #include "vision/geometry.hpp"
 #include "vision/image.hpp"
 #include "vision/integral_image.hpp"
+#include "vision/liveness_cue.hpp"
 #include "vision/motion_model.hpp"
 #include "vision/roll_by_image_symmetry.hpp"
 
@@ -37,6 +39,7 @@ struct FaceMotion {
     float imageRollAtStart = 0.f;
     bool haveImageRollAtStart = false;
     float rollChecked = 0.f;  ///< the tracked turn at the last check in the image
+    SwayHistory sway;         ///< its last flow steps, for LivenessCue
 };
 
 class StaticFaceRule {
@@ -62,7 +65,7 @@ public:
         float survived;
         float shift;
     };
-    void addFlowStep(FaceMotion& m, const FlowStep& step) const noexcept;
+    void addFlowStep(FaceMotion& m, const FlowStep& step) noexcept;
 
     /// Whether a face moved within the last staticDropFrames (`moved`) and confirmMotionFrames
     /// (`movedLately`) frames.
@@ -83,6 +86,7 @@ private:
 
     FaceTrackerOptions options_;
     RollByImageSymmetry* imageRoll_;
+    LivenessCue liveness_;
     ConstImageView gray_{};
     const IntegralImage* motion_ = nullptr;
     int frame_ = 0;

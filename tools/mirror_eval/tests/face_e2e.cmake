@@ -1,6 +1,6 @@
 # End to end: one mirror-eval face sub-command on a small subset of the real data, checking the
 # final line's format (not the numbers: the full runs measure those) and one-line errors.
-#   -DWHICH=detect|roll|track_fgnet|track_composed -DMIRROR_EVAL=... -DDATA=... -DOUT=...
+#   -DWHICH=detect|roll|track_fgnet|track_composed|liveness -DMIRROR_EVAL=... -DDATA=... -DOUT=...
 #   [-DFACEGEN=...] (track_composed)
 file(REMOVE_RECURSE ${OUT})
 file(MAKE_DIRECTORY ${OUT})
@@ -59,11 +59,22 @@ elseif(WHICH STREQUAL "roll")
 elseif(WHICH STREQUAL "track_fgnet")
   run_eval("^track: precision=${num} recall=${num} roll_mean_err_deg=${num}$"
            track --frames ${fgnet}/images --truth ${fgnet}/points --max-frames 8)
+  run_eval("^track: precision=${num} recall=${num} roll_mean_err_deg=${num}$"
+           track --frames ${fgnet}/images --truth ${fgnet}/points --start 990 --max-frames 4)
+  expect_error(bad_start "mirror-eval track: --start 1000: the sequence has only 1000 frames"
+               track --frames ${fgnet}/images --truth ${fgnet}/points --start 1000)
+  expect_error(negative_start "mirror-eval track: --start must be >= 0"
+               track --frames ${fgnet}/images --truth ${fgnet}/points --start -1)
   expect_error(bad_config "mirror-eval track: --config 'x'"
                track --frames ${fgnet}/images --truth ${fgnet}/points --config x)
   file(MAKE_DIRECTORY ${OUT}/empty)
   expect_error(no_truth "mirror-eval track: truth .*empty: no franck_00000.pts or"
                track --frames ${fgnet}/images --truth ${OUT}/empty)
+elseif(WHICH STREQUAL "liveness")
+  run_eval("^liveness: living_swayed_12=${num} moving_swayed_12=${num} static_swayed=${num} passed_swayed=${num}$"
+           liveness --frames ${fgnet}/images --truth ${fgnet}/points --max-frames 30 --every 5)
+  expect_error(bad_every "mirror-eval liveness: --every must be >= 1"
+               liveness --frames ${fgnet}/images --truth ${fgnet}/points --every 0)
 elseif(WHICH STREQUAL "track_composed")
   execute_process(COMMAND ${FACEGEN} --scenario two --frames 10 --size 320x240 --data ${DATA}
                           --out ${OUT}/seq

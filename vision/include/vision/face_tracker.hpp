@@ -93,6 +93,7 @@ struct FaceTrackerOptions {
     // Faces that never move are dropped (StaticFaceRule, with a motion mask only):
     float minFaceMoveFraction = 0.015f;  ///< a move: the centre shifts this x its size (>= 1 px)
     float minFaceMotionFraction = 0.6f;  ///< or this much of its inner box is foreground
+    bool livenessBySway = true;          ///< or its corners sway as one (LivenessCue)
     int confirmMotionFrames = 30;        ///< shown only if it moved this recently
     int staticDropFrames = 9000;         ///< a shown face still this long is dropped
     float tiltScanDegrees = 25.f;  ///< TiltedScan's angle (+- alternately); 0: upright scans only
