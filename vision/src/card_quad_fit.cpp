@@ -1,6 +1,5 @@
 #include "card_quad_fit.hpp"
 
-#include "card_shape_model.hpp"
 #include "vision/convex_hull.hpp"
 
 #include <algorithm>
@@ -185,10 +184,6 @@ QuadFit fitQuad(const ConstImageView& rgb, const Quad& seed, const QuadJudge& ju
     f.why = implausibleQuad(f, judge);
     if (!f.why)
         f.why = unlikeTheCard(f, judge);
-    // A rigid card moves smoothly: corners far from where its motion puts them more likely
-    // follow something else's outline (an arm across the card, a piece of background of its
-    // colour).
-    f.steady = !judge.predicted || quadDistance(f.raw, *judge.predicted) <= judge.motionTolerance;
     return f;
 }
 

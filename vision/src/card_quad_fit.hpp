@@ -37,8 +37,6 @@ struct QuadJudge {
     bool haveGood = false;  ///< a quad seen whole before
     float goodArea = 0.f;   ///< its area and aspect
     float goodAspect = 1.f;
-    const Quad* predicted = nullptr;  ///< where the shape model expects the card (null: nowhere)
-    float motionTolerance = 0.f;      ///< how far from `predicted` a corner may be
 };
 
 struct QuadFit {
@@ -46,10 +44,9 @@ struct QuadFit {
     EdgeRefinement refinement;  ///< the pass that gave `raw`
     float area = 0.f;
     float aspect = 1.f;
-    float inlierRatio = 0.f;  ///< edge inliers per sample line
-    float shape = 1.f;        ///< 0..1: likeness to the last quad seen whole
-    float fill = 0.f;         ///< component pixels per quad pixel
-    bool steady = true;       ///< its corners are where the card's motion puts them
+    float inlierRatio = 0.f;                   ///< edge inliers per sample line
+    float shape = 1.f;                         ///< 0..1: likeness to the last quad seen whole
+    float fill = 0.f;                          ///< component pixels per quad pixel
     const char* why = "degenerate component";  ///< null when plausible
 };
 
@@ -59,8 +56,8 @@ struct QuadFit {
 QuadFit fitQuad(const ConstImageView& rgb, const Quad& seed, const QuadJudge& judge,
                 float guide = 0.f) noexcept;
 
-/// Whether `a` is the better fit: a plausible one over an implausible one, then a steady one,
-/// then more edges fitted, then more edge inliers.
+/// Whether `a` is the better fit: a plausible one over an implausible one, then more edges
+/// fitted, then more edge inliers.
 bool betterFit(const QuadFit& a, const QuadFit& b) noexcept;
 
 }  // namespace vision

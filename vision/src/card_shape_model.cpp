@@ -112,10 +112,4 @@ float CardShapeModel::edgeGuide(unsigned missed) const noexcept
     return k * (6.f + 0.05f * std::sqrt(std::max(lastArea_, 1.f)) + 0.5f * speed_);
 }
 
-float CardShapeModel::motionTolerance(unsigned missed) const noexcept
-{
-    const float k = static_cast<float>(missed + 1);
-    return k * (10.f + 0.1f * std::sqrt(std::max(lastArea_, 1.f)) + speed_);
-}
-
 }  // namespace vision

@@ -34,8 +34,6 @@ public:
     float tolerance() const noexcept;
     /// How far an edge may be from its predicted place, `missed` frames on.
     float edgeGuide(unsigned missed) const noexcept;
-    /// How far a corner may be from its predicted place, `missed` frames on, for a rigid card.
-    float motionTolerance(unsigned missed) const noexcept;
 
     /// The last quad seen whole (the shape a recovery must resemble).
     bool haveGood() const noexcept { return haveGood_; }

@@ -141,17 +141,16 @@ QuadFit CardTracker::State::fitCard(const ConstImageView& rgb, const Quad* coars
     const unsigned missed = obs.framesSinceGood;
     const bool haveShape = shape.haveLast() && missed <= kShapeFrames;
     const Quad predicted = shape.predicted(missed);
-    QuadJudge judge{size,
-                    &options,
-                    componentArea,
-                    tracking,
-                    missed,
-                    shape.lastArea(),
-                    shape.haveGood(),
-                    shape.goodArea(),
-                    shape.goodAspect(),
-                    haveShape ? &predicted : nullptr,
-                    shape.motionTolerance(missed)};
+    QuadJudge judge;
+    judge.frame = size;
+    judge.options = &options;
+    judge.componentArea = componentArea;
+    judge.tracking = tracking;
+    judge.missed = missed;
+    judge.lastArea = shape.lastArea();
+    judge.haveGood = shape.haveGood();
+    judge.goodArea = shape.goodArea();
+    judge.goodAspect = shape.goodAspect();
     QuadFit best;
     if (coarse)
         best = fitQuad(rgb, *coarse, judge);

@@ -195,6 +195,38 @@ void clipToFrame(Point2f a, float ex, float ey, float maxX, float maxY, float& t
     }
 }
 
+/// The edge's line from its points (outward normal of the input edge (nx, ny)): RANSAC, then
+/// the checks that it is the edge's: enough inliers, spread along the edge over `minSpan` pixels
+/// (points bunched on a short piece do not fix its direction), and, when guided, not turned away
+/// from the expected edge. Returns the inlier count, 0 when not fitted.
+int fitEdge(const Point2f* pts, int count, float nx, float ny, float minSpan, int normals,
+            const EdgeRefinementOptions& o, Line2f& line) noexcept
+{
+    if (count < 3)
+        return 0;
+    std::uint8_t isInlier[kMaxNormalsPerEdge];
+    const int in = fitLineRansac(pts, count, o.inlierDistance, o.ransacIterations, line, isInlier);
+    const int needed = std::max(3, static_cast<int>(std::ceil(o.minInlierShare * normals)));
+    if (in < needed)
+        return 0;
+    float lo = 1e30f, hi = -1e30f;
+    for (int k = 0; k < count; ++k)
+        if (isInlier[k]) {
+            const float at = ny * pts[k].x - nx * pts[k].y;  // along the edge
+            lo = std::min(lo, at);
+            hi = std::max(hi, at);
+        }
+    if (hi - lo < minSpan)
+        return 0;
+    // Guided by an expected edge: a line turned away from it is something else's outline.
+    if (o.maxSeedDistance > 0.f && std::fabs(line.nx * ny - line.ny * nx) > o.maxSeedTurn)
+        return 0;
+    // Keep the outward orientation of the input edge.
+    if (line.nx * nx + line.ny * ny < 0.f)
+        line = {-line.nx, -line.ny, -line.c};
+    return in;
+}
+
 }  // namespace
 
 bool refineQuad(const ConstImageView& rgb, const Quad& quad, const EdgeRefinementOptions& options,
@@ -287,28 +319,8 @@ bool refineQuad(const ConstImageView& rgb, const Quad& quad, const EdgeRefinemen
         }
         out.samples += count;
         Line2f line;
-        std::uint8_t isInlier[kMaxNormalsPerEdge];
-        const int in = count >= 3 ? fitLineRansac(pts, count, options.inlierDistance,
-                                                  options.ransacIterations, line, isInlier)
-                                  : 0;
-        // Inliers bunched on a short piece of the edge do not fix its direction either.
-        float lo = 1e30f, hi = -1e30f;
-        for (int k = 0; k < count && in > 0; ++k)
-            if (isInlier[k]) {
-                const float at = (pts[k].x * ex + pts[k].y * ey) / len;
-                lo = std::min(lo, at);
-                hi = std::max(hi, at);
-            }
-        const bool spread = in > 0 && hi - lo >= minSpan;
-        const int needed =
-            std::max(3, static_cast<int>(std::ceil(options.minInlierShare * normals)));
-        // Guided by an expected edge: a line turned away from it is something else's outline.
-        const bool turned = options.maxSeedDistance > 0.f &&
-                            std::fabs(line.nx * ny - line.ny * nx) > options.maxSeedTurn;
-        if (in >= needed && !turned && spread) {
-            // Keep the outward orientation of the input edge.
-            if (line.nx * nx + line.ny * ny < 0.f)
-                line = {-line.nx, -line.ny, -line.c};
+        const int in = fitEdge(pts, count, nx, ny, minSpan, normals, options, line);
+        if (in > 0) {
             out.lines[e] = line;
             out.fitted[e] = true;
             out.inliers += in;
