@@ -36,13 +36,7 @@ private:
 /// The central half (in each direction) of the quad's bounding box: inside the card.
 vision::Rect centralRegion(const vision::Quad& q)
 {
-    float x0 = q[0].x, x1 = q[0].x, y0 = q[0].y, y1 = q[0].y;
-    for (const auto& p : q) {
-        x0 = std::min(x0, p.x);
-        x1 = std::max(x1, p.x);
-        y0 = std::min(y0, p.y);
-        y1 = std::max(y1, p.y);
-    }
+    const auto [x0, y0, x1, y1] = vision::extentOf(q);
     const float w = x1 - x0, h = y1 - y0;
     return {static_cast<int>(x0 + w / 4), static_cast<int>(y0 + h / 4), static_cast<int>(w / 2),
             static_cast<int>(h / 2)};

@@ -413,12 +413,8 @@ void HardScene::placePatch()
 
 FrameSpec HardScene::trainingFrame() const
 {
-    constexpr float kMargin = 8.0f;
-    const float r = size_.width - 0.5f + kMargin, b = size_.height - 0.5f + kMargin;
-    const float l = -0.5f - kMargin, t = -0.5f - kMargin;
     FrameSpec s;
-    s.quad = {vision::Point2f{l, t}, vision::Point2f{r, t}, vision::Point2f{r, b},
-              vision::Point2f{l, b}};
+    s.quad = trainingQuad(size_);
     s.paint = paint(CardPose{}, 0);
     return s;
 }

@@ -217,13 +217,8 @@ FrameSpec Scenario::cardFrame(const CardPose& pose, cv::Vec3b rgb, int index) co
 
 FrameSpec Scenario::trainingFrame(cv::Vec3b rgb) const
 {
-    // The card held close to the camera, filling the view: its edges just outside the image.
-    constexpr float kMargin = 8.0f;
-    const float r = size_.width - 0.5f + kMargin, b = size_.height - 0.5f + kMargin;
-    const float l = -0.5f - kMargin, t = -0.5f - kMargin;
     FrameSpec s;
-    s.quad = {vision::Point2f{l, t}, vision::Point2f{r, t}, vision::Point2f{r, b},
-              vision::Point2f{l, b}};
+    s.quad = trainingQuad(size_);
     s.paint = shadeCard(CardPose{}, rgb, 0.0, seed_ * 7919u);
     return s;
 }

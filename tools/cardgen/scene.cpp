@@ -207,15 +207,18 @@ cv::Mat renderFrame(const cv::Mat& background, const FrameSpec& spec, std::uint6
     return out;
 }
 
+vision::Quad trainingQuad(cv::Size size) noexcept
+{
+    constexpr float kMargin = 8.0f;
+    const float r = size.width - 0.5f + kMargin, b = size.height - 0.5f + kMargin;
+    const float l = -0.5f - kMargin, t = -0.5f - kMargin;
+    return {vision::Point2f{l, t}, vision::Point2f{r, t}, vision::Point2f{r, b},
+            vision::Point2f{l, b}};
+}
+
 bool quadTouchesImage(const vision::Quad& quad, cv::Size size) noexcept
 {
-    float minX = quad[0].x, maxX = quad[0].x, minY = quad[0].y, maxY = quad[0].y;
-    for (const auto& p : quad) {
-        minX = std::min(minX, p.x);
-        maxX = std::max(maxX, p.x);
-        minY = std::min(minY, p.y);
-        maxY = std::max(maxY, p.y);
-    }
+    const auto [minX, minY, maxX, maxY] = vision::extentOf(quad);
     // Separating axes of two convex polygons: the image's axes, then the quad's edge normals.
     const float left = -0.5f, top = -0.5f, right = size.width - 0.5f, bottom = size.height - 0.5f;
     if (maxX <= left || maxY <= top || minX >= right || minY >= bottom)

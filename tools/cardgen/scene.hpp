@@ -79,6 +79,10 @@ cv::Mat renderFrame(const cv::Mat& background, const FrameSpec& spec, std::uint6
 /// Draws the hand into a BGR image (anti-aliased).
 void drawHand(cv::Mat& bgr, const HandPose& hand);
 
+/// The training frame's card: held close to the camera, filling the view, its edges just outside
+/// the image.
+vision::Quad trainingQuad(cv::Size size) noexcept;
+
 /// True when any part of the quad lies within the image (pixel centres 0..width-1).
 bool quadTouchesImage(const vision::Quad& quad, cv::Size size) noexcept;
 

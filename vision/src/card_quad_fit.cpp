@@ -154,13 +154,7 @@ bool nearBorder(Point2f p, Size size) noexcept
 
 Rect boundsOf(const Quad& q, float grow) noexcept
 {
-    float x0 = q[0].x, x1 = q[0].x, y0 = q[0].y, y1 = q[0].y;
-    for (const Point2f& p : q) {
-        x0 = std::min(x0, p.x);
-        x1 = std::max(x1, p.x);
-        y0 = std::min(y0, p.y);
-        y1 = std::max(y1, p.y);
-    }
+    const auto [x0, y0, x1, y1] = extentOf(q);
     const float gx = grow * (x1 - x0), gy = grow * (y1 - y0);
     const int ix0 = static_cast<int>(std::floor(x0 - gx)),
               iy0 = static_cast<int>(std::floor(y0 - gy));

@@ -83,13 +83,7 @@ Quad CardShapeModel::predicted(unsigned missed) const noexcept
 Rect CardShapeModel::expectedBounds(unsigned missed) const noexcept
 {
     const Quad q = predicted(missed);
-    float x0 = q[0].x, x1 = q[0].x, y0 = q[0].y, y1 = q[0].y;
-    for (const Point2f& p : q) {
-        x0 = std::min(x0, p.x);
-        x1 = std::max(x1, p.x);
-        y0 = std::min(y0, p.y);
-        y1 = std::max(y1, p.y);
-    }
+    const auto [x0, y0, x1, y1] = extentOf(q);
     // A constant-velocity guess is off by about the last motion (the card speeds up, slows
     // down, turns), more the more frames it spans.
     const float margin =

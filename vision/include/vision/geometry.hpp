@@ -39,6 +39,23 @@ struct Point2f {
 /// A quadrilateral's corners, clockwise on screen (y down) starting from the top-left corner.
 using Quad = std::array<Point2f, 4>;
 
+/// The axis-aligned extent of a quad's corners, in (unrounded) pixels.
+struct QuadExtent {
+    float x0, y0, x1, y1;
+};
+
+constexpr QuadExtent extentOf(const Quad& q) noexcept
+{
+    QuadExtent e{q[0].x, q[0].y, q[0].x, q[0].y};
+    for (const Point2f& p : q) {
+        e.x0 = std::min(e.x0, p.x);
+        e.x1 = std::max(e.x1, p.x);
+        e.y0 = std::min(e.y0, p.y);
+        e.y1 = std::max(e.y1, p.y);
+    }
+    return e;
+}
+
 /// An axis-aligned rectangle of whole pixels: [x, x + width) x [y, y + height).
 struct Rect {
     int x = 0;
