@@ -10,26 +10,28 @@
 //    0.18 px, a tenth of the windows under 0.031 px (a calm person: 0.01-0.03 px per frame);
 //  - prints: facegen's static faces (seeds 1, 7, 23, every scenario, passers-by included) and
 //    FGNet frames 0, 400 and 640 held still under camera noise (sigma 3-6), a light drift and
-//    JPEG (quality 60-85, 720x576 and 360x288). With every half following (kMinHalfShare),
-//    their summed median reaches at most 0.028 px after 1 step, 0.042 after 3, 0.070 after 6
-//    and 0.12 after 12: the changing light biases the flow of a print's strong edges by up to
-//    0.01 px per frame, the same way frame after frame. Alone it drags the print's median as
-//    far as a calm head's (up to 0.28 px in a step), but only on its side: its halves share
-//    little of it.
-// With the thresholds below at 0.7 of their value, no print's window swayed; at their value
-// FGNet's did within 1 step in 78% of the windows, 2 in 87%, 6 in 96% and 12 in 98.9% (the
-// 360x288 copy: 70%, 83%, 94%, 97.7%). The rest sway later: the cue keeps looking while the
-// face is in view.
+//    JPEG (quality 60-85, 720x576 and 360x288; two of them 3000 frames long). With every half
+//    following (kMinHalfShare), their summed median reaches at most 0.031 px after 1 step, 0.042
+//    after 3, 0.070 after 6 and 0.12 after 12: the changing light biases the flow of a print's
+//    strong edges by up to 0.01 px per frame, the same way frame after frame. Its noise (the
+//    median of 40 corners' flows) is 0.001-0.009 px a step. A passer-by alone drags a print's
+//    median as far as a calm head's (up to 0.28 px in a step), but only on its side: its halves
+//    share little of it.
+// With the thresholds below, FGNet's windows swayed within 1 step in 75% of the windows, 2 in
+// 86%, 3 in 91%, 6 in 98% and 12 in 100% (the 360x288 copy: 70%, 83%, 88%, 96%, 99.6%); no
+// print's window did. At 0.7 of their values, 3 of the 2975 windows of the noisiest print did.
 // Not told apart: a print on a camera that shakes moves all its corners as one, as a head does.
 
 namespace vision {
 
 namespace {
 
-constexpr float kMinSway = 0.05f;         ///< pixels, whatever the number of steps
-constexpr float kSwayPerStep = 0.005f;    ///< pixels per step more (the light's drift)
-constexpr float kMinSwayOverNoise = 4.f;  ///< summed median / its noise
-constexpr float kMinHalfShare = 0.3f;     ///< of the sway each half followed at least
+constexpr float kMinSway = 0.04f;          ///< pixels, whatever the number of steps
+constexpr float kSwayPerStep = 0.01f;      ///< pixels per step more (the light's drift)
+constexpr float kMinSwayOverNoise = 4.5f;  ///< summed median / its noise
+/// A median of n noisy flows has pi / 2 times the variance of their mean.
+constexpr double kMedianVariance = 1.5707963;
+constexpr float kMinHalfShare = 0.3f;  ///< of the sway each half followed at least
 /// Corners a half needs for its median to count (fewer: that half did not move).
 constexpr int kMinHalfCorners = 2;
 
@@ -95,7 +97,7 @@ void LivenessCue::addFlowStep(SwayHistory& history, std::span<const Point2f> fro
         scatter += 0.5 * (ex * ex + ey * ey);
         ++n;
     }
-    step.variance = static_cast<float>(scatter / n / n);
+    step.variance = static_cast<float>(kMedianVariance * scatter / n / n);
     for (int h = 0; h < 4; ++h)
         medianFlow(from, to, inliers, model.centre, h, kMinHalfCorners,
                    step.halves[static_cast<std::size_t>(h)]);

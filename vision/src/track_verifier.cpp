@@ -16,6 +16,9 @@ constexpr float kVerifyContext = 1.6f;
 /// Verification retries this far either side of the tracked roll (the upright cascade finds
 /// faces within about +-15 degrees).
 constexpr float kVerifyRollStep = 12.f;
+/// A face box grown by this factor that reaches beyond the image is a face at its edge: one
+/// found by the part in view may be this much larger.
+constexpr float kEdgeGrowth = 1.5f;
 
 FaceDetectorOptions verifyOptions(const FaceTrackerOptions& o, Size window)
 {
@@ -30,6 +33,15 @@ FaceDetectorOptions verifyOptions(const FaceTrackerOptions& o, Size window)
     d.maxRawHits = 1024;
     d.maxFaces = 16;
     return d;
+}
+
+/// The face's box, grown by kEdgeGrowth, reaches beyond the image.
+bool atEdge(const TrackedFace& f, const ConstImageView& gray) noexcept
+{
+    const float half = f.size * 0.5f * kEdgeGrowth;
+    return f.centre.x - half < 0.f || f.centre.y - half < 0.f ||
+           f.centre.x + half > static_cast<float>(gray.width) ||
+           f.centre.y + half > static_cast<float>(gray.height);
 }
 
 }  // namespace
@@ -73,9 +85,12 @@ bool TrackVerifier::verifyAt(const ConstImageView& gray, Track& t, float roll,
     if (!warpUpright(gray, t.face.centre, roll, side, patch_.view()))
         return false;
     // Every reanchorEvery verified frames a grouped scan of the patch instead of first hit
-    // re-centres and re-sizes the track from it: the corners alone let its scale drift.
+    // re-centres and re-sizes the track from it: the corners alone let its scale drift. A face
+    // at the image's edge every frame: it was found by the part of it in view, which grows as
+    // it comes in, while its corners keep the size it was found at.
     const bool reanchoring =
-        options_.reanchorEvery > 0 && t.verifiedSinceAnchor + 1 >= options_.reanchorEvery;
+        options_.reanchorEvery > 0 &&
+        (t.verifiedSinceAnchor + 1 >= options_.reanchorEvery || atEdge(t.face, gray));
     if (!reanchoring) {
         Rect hit;
         const bool ok = detector_.detectFirst(patch_.view(), hit);

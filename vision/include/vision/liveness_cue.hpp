@@ -33,7 +33,7 @@ public:
     struct Step {
         Point2f common{};                 ///< median flow of the face's corners
         std::array<Point2f, 4> halves{};  ///< of those left, right, above, below its centre
-        float variance = 0.f;             ///< of the mean flow, per axis (scatter^2 / corners)
+        float variance = 0.f;             ///< of the median flow, per axis
     };
 
     void clear() noexcept { count_ = 0; }
