@@ -1,5 +1,6 @@
 #include "card_quad_fit.hpp"
 
+#include "card_shape_model.hpp"
 #include "vision/convex_hull.hpp"
 
 #include <algorithm>
@@ -174,6 +175,8 @@ QuadFit fitQuad(const ConstImageView& rgb, const Quad& seed, const QuadJudge& ju
 {
     QuadFit f;
     refineTwice(rgb, seed, *judge.options, guide, f);
+    if (judge.last && carryHiddenEdge(*judge.last, judge.frame, f.refinement))
+        f.raw = canonicalOrder(f.refinement.quad);
     // Plausibility: the beyond-the-dissertation lost-track test.
     f.area = quadArea(f.raw);
     f.aspect = aspectOf(f.raw);

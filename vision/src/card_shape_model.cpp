@@ -112,4 +112,61 @@ float CardShapeModel::edgeGuide(unsigned missed) const noexcept
     return k * (6.f + 0.05f * std::sqrt(std::max(lastArea_, 1.f)) + 0.5f * speed_);
 }
 
+namespace {
+
+/// The foot of p on the line.
+Point2f onLine(Point2f p, const Line2f& l) noexcept
+{
+    const float d = l.distance(p);
+    return {p.x - d * l.nx, p.y - d * l.ny};
+}
+
+}  // namespace
+
+bool carryHiddenEdge(const Quad& last, Size frame, EdgeRefinement& r) noexcept
+{
+    // Well inside the frame: 8 px from its border.
+    auto inView = [&frame](Point2f p) {
+        return p.x >= 8.f && p.y >= 8.f && p.x <= static_cast<float>(frame.width - 9) &&
+               p.y <= static_cast<float>(frame.height - 9);
+    };
+    if (r.edgesFitted != 3)
+        return false;
+    int k = 0;
+    while (r.fitted[k])
+        ++k;
+    // Corner i joins edges i - 1 and i; edge k runs from corner k to corner k + 1.
+    Point2f a, b;
+    if (!intersectLines(r.lines[(k + 1) % 4], r.lines[(k + 2) % 4], a) ||
+        !intersectLines(r.lines[(k + 2) % 4], r.lines[(k + 3) % 4], b))
+        return false;
+    const int s = bestShift(r.quad, last);  // r.quad[(i + s) % 4] is last[i]
+    auto lastOf = [&](int corner) { return last[(corner - s + 8) % 4]; };
+    if (!inView(lastOf(k)) || !inView(lastOf((k + 1) % 4)))
+        return false;
+    const Point2f la = lastOf((k + 2) % 4), lb = lastOf((k + 3) % 4);
+    // The similarity z -> m z + t taking la, lb to a, b (as complex numbers).
+    const float dx = lb.x - la.x, dy = lb.y - la.y, ex = b.x - a.x, ey = b.y - a.y;
+    const float den = dx * dx + dy * dy;
+    if (den < 1.f)
+        return false;
+    const float mr = (ex * dx + ey * dy) / den, mi = (ey * dx - ex * dy) / den;
+    const float scale = std::hypot(mr, mi);
+    if (!(scale > 0.8f && scale < 1.25f))
+        return false;
+    auto moved = [&](Point2f p) {
+        const float px = p.x - la.x, py = p.y - la.y;
+        return Point2f{a.x + mr * px - mi * py, a.y + mi * px + mr * py};
+    };
+    const Point2f p0 = onLine(moved(lastOf(k)), r.lines[(k + 3) % 4]);
+    const Point2f p1 = onLine(moved(lastOf((k + 1) % 4)), r.lines[(k + 1) % 4]);
+    Line2f hidden;
+    if (!inView(p0) || !inView(p1) || !lineThrough(p0, p1, hidden))
+        return false;
+    r.lines[k] = hidden;
+    r.quad[k] = p0;
+    r.quad[(k + 1) % 4] = p1;
+    return true;
+}
+
 }  // namespace vision
