@@ -5,8 +5,6 @@
 
 #include <gtest/gtest.h>
 
-#include <cmath>
-
 using namespace vision;
 
 namespace {
@@ -69,37 +67,6 @@ TEST(CardShapeModel, TheShapeToRecoverToIsOneSeenWhole)
     m.track(kCard, 3.f * kArea, 2.f, 0, true, true);
     EXPECT_EQ(m.goodArea(), 3.f * kArea);
     EXPECT_EQ(m.goodAspect(), 2.f);
-}
-
-TEST(CardShapeModel, AnEdgeUnderAHandMovesWithTheCard)
-{
-    // The card moved by (7, 3) and turned a little; its right edge (1) had no evidence.
-    const float c = std::cos(0.03f), s = std::sin(0.03f);
-    Quad now;
-    for (int i = 0; i < 4; ++i) {
-        const float x = kCard[i].x - 180.f, y = kCard[i].y - 155.f;
-        now[i] = {180.f + 7.f + c * x - s * y, 155.f + 3.f + s * x + c * y};
-    }
-    EdgeRefinement r;
-    for (int i = 0; i < 4; ++i) {
-        lineThrough(now[i], now[(i + 1) % 4], r.lines[i]);
-        r.fitted[i] = i != 1;
-        r.quad[i] = now[i];
-    }
-    r.edgesFitted = 3;
-    lineThrough({230.f, 90.f}, {240.f, 230.f}, r.lines[1]);  // the seed's wrong line
-    r.quad[1] = {231.f, 97.f};
-    r.quad[2] = {239.f, 215.f};
-    ASSERT_TRUE(carryHiddenEdge(kCard, {640, 480}, r));
-    EXPECT_LT(quadDistance(r.quad, now), 0.05f);
-    // Not an edge at the border: out of view it is unknowable, not hidden.
-    EdgeRefinement atBorder = r;
-    const Quad nearRight = moved(kCard, 375.f, 0.f);  // its right edge at x = 635
-    EXPECT_FALSE(carryHiddenEdge(nearRight, {640, 480}, atBorder));
-    // Two hidden edges: nothing to carry them with.
-    r.fitted[2] = false;
-    r.edgesFitted = 2;
-    EXPECT_FALSE(carryHiddenEdge(kCard, {640, 480}, r));
 }
 
 TEST(CardShapeModel, QuadDistancePairsCornersByTheBestCyclicShift)

@@ -1,6 +1,5 @@
 #include "card_quad_fit.hpp"
 
-#include "card_shape_model.hpp"
 #include "vision/convex_hull.hpp"
 
 #include <algorithm>
@@ -175,8 +174,6 @@ QuadFit fitQuad(const ConstImageView& rgb, const Quad& seed, const QuadJudge& ju
 {
     QuadFit f;
     refineTwice(rgb, seed, *judge.options, guide, f);
-    if (judge.last && carryHiddenEdge(*judge.last, judge.frame, f.refinement))
-        f.raw = canonicalOrder(f.refinement.quad);
     // Plausibility: the beyond-the-dissertation lost-track test.
     f.area = quadArea(f.raw);
     f.aspect = aspectOf(f.raw);

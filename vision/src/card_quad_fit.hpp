@@ -37,9 +37,6 @@ struct QuadJudge {
     bool haveGood = false;  ///< a quad seen whole before
     float goodArea = 0.f;   ///< its area and aspect
     float goodAspect = 1.f;
-    /// The last frame's quad while tracking (null otherwise): an edge without evidence moves with
-    /// the card (carryHiddenEdge)
-    const Quad* last = nullptr;
 };
 
 struct QuadFit {

@@ -6,7 +6,6 @@
 // card's pieces), and the last quad seen whole, which a recovered quad must resemble. Private to
 // vision/src.
 
-#include "vision/edge_refinement.hpp"
 #include "vision/geometry.hpp"
 #include "vision/image.hpp"
 
@@ -24,7 +23,6 @@ public:
                bool measured) noexcept;
 
     bool haveLast() const noexcept { return haveLast_; }
-    const Quad& last() const noexcept { return last_; }
     float lastArea() const noexcept { return lastArea_; }
     /// Where the card is expected `missed` frames after the last tracked one: moving on as it
     /// last moved.
@@ -57,14 +55,5 @@ private:
 /// Largest corner distance between two quads, their corners paired by the best cyclic shift (the
 /// top-left corner can change when the card turns through 45 degrees).
 float quadDistance(const Quad& a, const Quad& b) noexcept;
-
-/// An edge in view but without image evidence (under a hand) moves with the card: with exactly
-/// one edge of `r` not fitted, the two corners between fitted edges and the same two of `last`
-/// (the last frame's quad) give the card's motion as a similarity; the hidden edge's corners are
-/// the last ones moved by it, slid onto their fitted edges. `r.lines` and `r.quad` are updated.
-/// False (r unchanged) when no edge or more than one is hidden, the motion is implausible, or the
-/// hidden edge is at or beyond the border of a frame of `frame` (then or now): an edge out of
-/// view is unknowable, and carried there it would be taken for the card's border.
-bool carryHiddenEdge(const Quad& last, Size frame, EdgeRefinement& r) noexcept;
 
 }  // namespace vision

@@ -151,7 +151,6 @@ QuadFit CardTracker::State::fitCard(const ConstImageView& rgb, const Quad* coars
     judge.haveGood = shape.haveGood();
     judge.goodArea = shape.goodArea();
     judge.goodAspect = shape.goodAspect();
-    judge.last = tracking && shape.haveLast() ? &shape.last() : nullptr;
     QuadFit best;
     if (coarse)
         best = fitQuad(rgb, *coarse, judge);
