@@ -235,4 +235,16 @@ bool quadTouchesImage(const vision::Quad& quad, cv::Size size) noexcept
     return true;
 }
 
+vision::Quad truthCorners(const vision::Quad& quad) noexcept
+{
+    int first = 0;
+    for (int i = 1; i < 4; ++i)
+        if (quad[i].x + quad[i].y < quad[first].x + quad[first].y)
+            first = i;
+    vision::Quad out;
+    for (int i = 0; i < 4; ++i)
+        out[i] = quad[(first + i) % 4];
+    return out;
+}
+
 }  // namespace cardgen

@@ -86,4 +86,9 @@ vision::Quad trainingQuad(cv::Size size) noexcept;
 /// True when any part of the quad lies within the image (pixel centres 0..width-1).
 bool quadTouchesImage(const vision::Quad& quad, cv::Size size) noexcept;
 
+/// The card's corners as the truth gives them: clockwise on screen from the top-left one (the
+/// corner with the smallest x + y). The drawn quad starts at the card's own top-left corner,
+/// which is another one when the card is turned by about 45 degrees or more.
+vision::Quad truthCorners(const vision::Quad& quad) noexcept;
+
 }  // namespace cardgen

@@ -59,7 +59,7 @@ std::string truthRow(int frame, const FrameSpec& spec)
         std::snprintf(row, sizeof row, "%d,,,,,,,,", frame);
         return row;
     }
-    const vision::Quad& q = spec.quad;
+    const vision::Quad q = truthCorners(spec.quad);
     std::snprintf(row, sizeof row, "%d,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f", frame, q[0].x,
                   q[0].y, q[1].x, q[1].y, q[2].x, q[2].y, q[3].x, q[3].y);
     return row;

@@ -46,7 +46,7 @@ TrackerRun runFrames(const cv::Mat& background, const FrameSource& scene,
         t.quad = seen.quad;
         t.problem = tracker.lastProblem();
         run.tracked.push_back(t);
-        run.truth.push_back({static_cast<int>(k), spec.card, spec.quad});
+        run.truth.push_back({static_cast<int>(k), spec.card, cardgen::truthCorners(spec.quad)});
     }
     mirror_eval::CardEvalSettings settings;
     settings.frameSize = size;
