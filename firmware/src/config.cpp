@@ -4,17 +4,14 @@
 
 #include "firmware/config.hpp"
 
+#include "bounded_file.hpp"
 #include "config_schema.hpp"
+#include "config_string_checks.hpp"
 #include "config_value_text.hpp"
 
-#include <fcntl.h>
-#include <sys/stat.h>
 #include <toml++/toml.h>
-#include <unistd.h>
 
 #include <algorithm>
-#include <cerrno>
-#include <cstring>
 #include <iterator>
 #include <optional>
 #include <string>
@@ -27,6 +24,8 @@ namespace {
 
 using config_schema::KeySpec;
 using config_schema::Kind;
+using config_schema::checkText;
+using config_schema::excerpt;
 using config_schema::quoted;
 using config_schema::Value;
 
@@ -110,7 +109,7 @@ std::string keyText(std::string_view key)
         return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') ||
                c == '_' || c == '-';
     });
-    return bare ? std::string(key) : quoted(key);
+    return bare && key.size() <= 64 ? std::string(key) : excerpt(key);
 }
 
 /// toml++ descriptions are one line today; keep it so if that changes (one problem, one line).
@@ -166,6 +165,11 @@ std::optional<Value> checkValue(const KeySpec& spec, const toml::node& node, std
             if (static_cast<double>(v) < spec.min || static_cast<double>(v) > spec.max) {
                 return outOfRange(std::to_string(v));
             }
+            if (!spec.oneOf.empty() &&
+                std::find(spec.oneOf.begin(), spec.oneOf.end(), v) == spec.oneOf.end()) {
+                what = withAllowed(std::to_string(v) + " is not in the list", spec);
+                return std::nullopt;
+            }
             if (spec.even && v % 2 != 0) {
                 what = withAllowed(std::to_string(v) + " is odd", spec);
                 return std::nullopt;
@@ -187,7 +191,9 @@ std::optional<Value> checkValue(const KeySpec& spec, const toml::node& node, std
             if (s == nullptr) {
                 return wrongType("string");
             }
-            std::string wrong = spec.check != nullptr ? spec.check(s->get()) : std::string();
+            std::string wrong = checkText(s->get());
+            if (wrong.empty() && spec.check != nullptr)
+                wrong = spec.check(s->get());
             if (!wrong.empty()) {
                 what = withAllowed(std::move(wrong), spec);
                 return std::nullopt;
@@ -201,7 +207,7 @@ std::optional<Value> checkValue(const KeySpec& spec, const toml::node& node, std
             }
             const auto found = std::find(spec.choices.begin(), spec.choices.end(), s->get());
             if (found == spec.choices.end()) {
-                what = withAllowed("unknown value " + quoted(s->get()), spec);
+                what = withAllowed("unknown value " + excerpt(s->get()), spec);
                 return std::nullopt;
             }
             return Value(static_cast<std::int64_t>(found - spec.choices.begin()));
@@ -247,7 +253,9 @@ std::optional<Value> checkValue(const KeySpec& spec, const toml::node& node, std
                     what = "expected strings, got " + std::string(nodeTypeName(item));
                     return std::nullopt;
                 }
-                std::string wrong = spec.check != nullptr ? spec.check(w->get()) : std::string();
+                std::string wrong = checkText(w->get());
+                if (wrong.empty() && spec.check != nullptr)
+                    wrong = spec.check(w->get());
                 if (!wrong.empty()) {
                     what = withAllowed(std::move(wrong), spec);
                     return std::nullopt;
@@ -261,7 +269,7 @@ std::optional<Value> checkValue(const KeySpec& spec, const toml::node& node, std
                 if (s->get() == "native" || s->get() == "max") {
                     return Value(s->get());
                 }
-                what = withAllowed("unknown value " + quoted(s->get()), spec);
+                what = withAllowed("unknown value " + excerpt(s->get()), spec);
                 return std::nullopt;
             }
             const auto v = numberOf(node);
@@ -369,69 +377,6 @@ Config builtInDefaults()
     return config;
 }
 
-/// The contents of a config file, or why it could not be read.
-struct FileText {
-    enum class Status { Ok, Missing, Unreadable, TooLarge } status = Status::Ok;
-    std::string text;
-    std::string problem;
-};
-
-FileText readConfigFile(const std::string& path)
-{
-    FileText result;
-    const auto fail = [&](int error) {
-        result.status = error == ENOENT ? FileText::Status::Missing : FileText::Status::Unreadable;
-        result.problem = std::string("cannot read file: ") + std::strerror(error);
-        return result;
-    };
-    const auto tooLarge = [&](std::size_t bytes, bool atLeast) {
-        result.status = FileText::Status::TooLarge;
-        result.problem = "file is too large: " + std::string(atLeast ? "over " : "") +
-                         std::to_string(bytes) + " bytes (allowed: up to " +
-                         std::to_string(kMaxFileBytes) + " bytes)";
-        return result;
-    };
-
-    const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
-    if (fd < 0) {
-        return fail(errno);
-    }
-    struct Closer {
-        int fd;
-        ~Closer() { ::close(fd); }
-    } closer{fd};
-
-    struct stat info {};
-    if (::fstat(fd, &info) != 0) {
-        return fail(errno);
-    }
-    if (S_ISDIR(info.st_mode)) {
-        return fail(EISDIR);
-    }
-    // Reject a big regular file before reading it; pipes and devices are read up to the limit.
-    if (S_ISREG(info.st_mode) && static_cast<std::size_t>(info.st_size) > kMaxFileBytes) {
-        return tooLarge(static_cast<std::size_t>(info.st_size), false);
-    }
-    char buffer[16384];
-    for (;;) {
-        const ssize_t n = ::read(fd, buffer, sizeof buffer);
-        if (n < 0) {
-            if (errno == EINTR) {
-                continue;
-            }
-            return fail(errno);
-        }
-        if (n == 0) {
-            break;
-        }
-        result.text.append(buffer, static_cast<std::size_t>(n));
-        if (result.text.size() > kMaxFileBytes) {
-            return tooLarge(kMaxFileBytes, true);
-        }
-    }
-    return result;
-}
-
 std::string_view trim(std::string_view text)
 {
     const auto first = text.find_first_not_of(" \t");
@@ -449,9 +394,16 @@ void applySet(const std::string& set, int index, Config& config, std::vector<Con
 {
     Layer layer{"--set", index, {}};
     Problems problems(layer);
+    // One --set is one key: a line break would let its text set a second one.
+    if (set.find_first_of("\n\r") != std::string::npos) {
+        problems.addAtStart("config", "one key per --set, got a line break in " + excerpt(set) +
+                                          " (allowed: KEY=VALUE on one line)");
+        problems.moveInto(all);
+        return;
+    }
     const auto equals = set.find('=');
     if (equals == std::string::npos || trim(std::string_view(set).substr(0, equals)).empty()) {
-        problems.addAtStart("config", "expected KEY=VALUE, got " + quoted(set) +
+        problems.addAtStart("config", "expected KEY=VALUE, got " + excerpt(set) +
                                           " (allowed: KEY is section.key, VALUE is TOML)");
         problems.moveInto(all);
         return;
@@ -525,13 +477,13 @@ Config loadConfig(const ConfigRequest& request)
     std::vector<ConfigProblem> all;
 
     const std::string path = request.path.empty() ? kDefaultConfigPath : request.path;
-    FileText file = readConfigFile(path);
+    BoundedFile file = readBoundedFile(path, kMaxFileBytes);
     // Without --config a missing file just means "use the defaults"; one that exists but cannot be
     // read is still an error, so a broken installation does not silently run on defaults.
-    if (file.status != FileText::Status::Missing || request.pathExplicit) {
+    if (file.status != BoundedFile::Status::Missing || request.pathExplicit) {
         const Layer layer{path, {}, {}};
         Problems problems(layer);
-        if (file.status == FileText::Status::Ok) {
+        if (file.status == BoundedFile::Status::Ok) {
             applyText(file.text, config, problems, kEmptyFile);
             config.origin = path;
         } else {

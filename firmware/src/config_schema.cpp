@@ -4,6 +4,7 @@
 #include "config_schema.hpp"
 
 #include "config_string_checks.hpp"
+#include "platform/serial_console.hpp"
 
 #include <array>
 
@@ -224,8 +225,9 @@ const KeySpec kSchema[] = {
      .get = [](const Config& c) -> Value { return c.console.serial; }},
     {.name = "console.baud",
      .kind = Kind::Int,
-     .min = 1200,
-     .max = 4000000,
+     .min = platform::kSerialBaudRates.front(),
+     .max = platform::kSerialBaudRates.back(),
+     .oneOf = platform::kSerialBaudRates,
      .doc = "Serial console speed in bits per second (a standard rate, e.g. 115200)",
      .set = [](Config& c, const Value& v) { c.console.baud = asInt(v); },
      .get = [](const Config& c) { return intValue(c.console.baud); }},

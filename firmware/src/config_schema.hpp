@@ -43,6 +43,7 @@ struct KeySpec {
     double min = 0.0;  ///< Int, Float, Rate: inclusive range
     double max = 0.0;
     bool even = false;                            ///< Int: odd values are rejected
+    std::span<const int> oneOf{};                 ///< Int: when not empty, the only values allowed
     int maxItems = 0;                             ///< IntList, WordList: most entries
     std::span<const std::string_view> choices{};  ///< Enum
     StringCheck check = nullptr;                  ///< String, WordList (each word)

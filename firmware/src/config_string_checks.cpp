@@ -6,6 +6,7 @@
 #include "firmware/button_actions.hpp"
 #include "platform/display_mode.hpp"
 
+#include <cstdio>
 #include <initializer_list>
 #include <utility>
 
@@ -29,13 +30,30 @@ std::string checkSpec(std::string_view value, std::string_view what,
             if (value.size() > prefix.size()) {
                 return {};
             }
-            return quoted(value) + " needs a " + std::string(argument) + " after " + quoted(prefix);
+            return excerpt(value) + " needs a " + std::string(argument) + " after " + quoted(prefix);
         }
     }
-    return "unknown " + std::string(what) + " " + quoted(value);
+    return "unknown " + std::string(what) + " " + excerpt(value);
 }
 
 }  // namespace
+
+std::string checkText(std::string_view value)
+{
+    if (value.size() > kMaxStringBytes)
+        return std::to_string(value.size()) + " bytes is too long (at most " +
+               std::to_string(kMaxStringBytes) + ")";
+    for (std::size_t i = 0; i < value.size(); ++i) {
+        const auto byte = static_cast<unsigned char>(value[i]);
+        if (byte < 0x20 || byte == 0x7f) {
+            char code[8];
+            std::snprintf(code, sizeof code, "0x%02X", byte);
+            return std::string("control character ") + code + " at byte " +
+                   std::to_string(i + 1) + " of " + excerpt(value);
+        }
+    }
+    return {};
+}
 
 // libcamera, v4l2, drm and window are accepted here so a config written for a later build still
 // validates; the source/display factories say when one is not built into this version.
@@ -70,7 +88,7 @@ std::string checkButtonAction(std::string_view value)
     ButtonAction action{};
     if (parseButtonAction(value, action))
         return {};
-    return "unknown action " + quoted(value);
+    return "unknown action " + excerpt(value);
 }
 
 std::string checkOverlayName(std::string_view value)
@@ -91,11 +109,13 @@ std::string checkDisplayMode(std::string_view value)
 {
     if (value.empty() || value == "preferred")
         return {};
+    // The parser names the whole value in its message; "7680x4320@240.000" is the longest mode.
+    constexpr std::size_t kLongestMode = 24;
     platform::DisplayModeRequest mode;
     std::string error;
-    if (platform::parseDisplayMode(value, mode, error))
+    if (value.size() <= kLongestMode && platform::parseDisplayMode(value, mode, error))
         return {};
-    return error.empty() ? "unknown mode " + quoted(value) : error;
+    return error.empty() ? "unknown mode " + excerpt(value) : error;
 }
 
 std::string checkDirectory(std::string_view value)

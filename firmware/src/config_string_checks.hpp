@@ -2,10 +2,18 @@
 // The forms the String keys of the schema accept (KeySpec::check): each returns "" when the value
 // is fine, else one line saying what is wrong. Private to the config schema.
 
+#include <cstddef>
 #include <string>
 #include <string_view>
 
 namespace firmware::config_schema {
+
+/// The longest string value, in bytes (a path is at most 4096 bytes on Linux).
+inline constexpr std::size_t kMaxStringBytes = 4096;
+/// Every string value, before its key's own check: at most kMaxStringBytes, and printable (no
+/// control character: a value with a line break or an escape sequence would split the problem's
+/// line or reach the terminal raw).
+std::string checkText(std::string_view value);
 
 /// `[source] spec`: "auto", "demo", "synthetic", "libcamera[:ID]", "file:PATH", "v4l2:DEVICE".
 std::string checkSourceSpec(std::string_view value);

@@ -44,8 +44,14 @@ std::string allowed(const KeySpec& spec)
     switch (spec.kind) {
         case Kind::Bool:
             return "true, false";
-        case Kind::Int:
-            return (spec.even ? "even numbers " : "") + range(spec);
+        case Kind::Int: {
+            if (spec.oneOf.empty())
+                return (spec.even ? "even numbers " : "") + range(spec);
+            std::string list;
+            for (const int value : spec.oneOf)
+                list += (list.empty() ? "" : ", ") + std::to_string(value);
+            return list;
+        }
         case Kind::Float:
             return range(spec);
         case Kind::String:
@@ -164,6 +170,17 @@ std::string quoted(std::string_view text)
         }
     }
     return out + "\"";
+}
+
+std::string excerpt(std::string_view text)
+{
+    constexpr std::size_t kShown = 64;
+    if (text.size() <= kShown)
+        return quoted(text);
+    std::size_t cut = kShown;
+    while (cut > 0 && (static_cast<unsigned char>(text[cut]) & 0xC0) == 0x80)
+        --cut;  // not inside a UTF-8 character
+    return quoted(text.substr(0, cut)) + "... (" + std::to_string(text.size()) + " bytes)";
 }
 
 std::string formatNumber(double value)

@@ -19,6 +19,9 @@ std::string formatValue(const KeySpec& spec, const Value& value);
 
 /// A TOML basic string literal with everything escaped that must be ("a\"b").
 std::string quoted(std::string_view text);
+/// A value quoted for a message: `quoted` of its first 64 bytes, and when it is longer, "..." and
+/// its length, so one problem stays one short line whatever was typed.
+std::string excerpt(std::string_view text);
 /// The shortest text that reads back as the same double ("30", "0.1", "1e+20").
 std::string formatNumber(double value);
 

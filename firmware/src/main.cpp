@@ -15,6 +15,7 @@
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
+#include <charconv>
 #include <csignal>
 #include <cstdint>
 #include <cstdio>
@@ -59,6 +60,32 @@ void ensureStandardFds()
                 ::close(opened);
             }
         }
+}
+
+/// The most --frames accepts: over a thousand years at 30 fps, and far from any wrap-around.
+constexpr std::uint64_t kMaxFrames = 1'000'000'000'000;
+
+/// --frames N as a whole number 0..kMaxFrames: CLI11 alone would take -1 as 2^64-1 and saturate
+/// 1e23 to the largest integer.
+CLI::Validator frameCount()
+{
+    return CLI::Validator(
+        [](std::string& text) -> std::string {
+            std::uint64_t value = 0;
+            const char* end = text.data() + text.size();
+            const auto [ptr, ec] = std::from_chars(text.data(), end, value);
+            if (text.empty() || ec != std::errc() || ptr != end || value > kMaxFrames)
+            {
+                std::string shown = text.substr(0, 32);
+                for (char& c : shown)
+                    if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f)
+                        c = '?';  // the message stays one line, no escape reaches the terminal
+                return "expected a whole number of frames 0.." + std::to_string(kMaxFrames) +
+                       ", got \"" + shown + (text.size() > 32 ? "...\"" : "\"");
+            }
+            return {};
+        },
+        "N");
 }
 
 extern "C" void onStopSignal(int)
@@ -142,7 +169,8 @@ int main(int argc, char** argv)
     app.add_flag("--print-config", printConfig, "print the effective config as TOML and exit");
     app.add_option("-s,--source", source, "frame source SPEC (overrides [source] spec)");
     app.add_option("-d,--display", display, "display SPEC (overrides [display] spec)");
-    app.add_option("-n,--frames", frames, "stop after N frames (0 = run until stopped)");
+    app.add_option("-n,--frames", frames, "stop after N frames (0 = run until stopped)")
+        ->check(frameCount());
     app.add_option("--set", sets, "override one config key: --set display.hud=false (TOML value)");
 
     try {

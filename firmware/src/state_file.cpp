@@ -1,9 +1,18 @@
 #include "state_file.hpp"
 
+#include "bounded_file.hpp"
+
 #include <cstdio>
 #include <filesystem>
 
 namespace firmware {
+
+namespace {
+
+/// A state file is a few lines (a colour, an overlay choice per face).
+constexpr std::size_t kMaxStateFileBytes = 64 * 1024;
+
+}  // namespace
 
 bool createStateFolder(const std::string& dir, char* error, std::size_t errorCapacity)
 {
@@ -20,11 +29,15 @@ bool createStateFolder(const std::string& dir, char* error, std::size_t errorCap
 std::optional<toml::table> readStateToml(const std::string& path, std::string& warning)
 {
     warning.clear();
-    std::error_code ec;
-    if (!std::filesystem::exists(path, ec))
+    const BoundedFile file = readBoundedFile(path, kMaxStateFileBytes);
+    if (file.status == BoundedFile::Status::Missing)
         return std::nullopt;
+    if (file.status != BoundedFile::Status::Ok) {
+        warning = path + ": " + file.problem + "; ignored";
+        return std::nullopt;
+    }
     try {
-        return toml::parse_file(path);
+        return toml::parse(file.text, path);
     } catch (const toml::parse_error& e) {
         warning = path + ":" + std::to_string(e.source().begin.line) + ":" +
                   std::to_string(e.source().begin.column) + ": " + std::string(e.description()) +

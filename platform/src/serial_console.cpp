@@ -7,52 +7,21 @@
 #include <algorithm>
 #include <cstdio>
 #include <cstring>
+#include <iterator>
 #include <stdexcept>
 
 namespace platform {
 
 speed_t serialSpeed(int baud) noexcept
 {
-    switch (baud) {
-        case 9600:
-            return B9600;
-        case 19200:
-            return B19200;
-        case 38400:
-            return B38400;
-        case 57600:
-            return B57600;
-        case 115200:
-            return B115200;
-        case 230400:
-            return B230400;
-        case 460800:
-            return B460800;
-        case 500000:
-            return B500000;
-        case 576000:
-            return B576000;
-        case 921600:
-            return B921600;
-        case 1000000:
-            return B1000000;
-        case 1152000:
-            return B1152000;
-        case 1500000:
-            return B1500000;
-        case 2000000:
-            return B2000000;
-        case 2500000:
-            return B2500000;
-        case 3000000:
-            return B3000000;
-        case 3500000:
-            return B3500000;
-        case 4000000:
-            return B4000000;
-        default:
-            return 0;
-    }
+    // termios names each standard rate by its own constant, in the order of kSerialBaudRates.
+    static constexpr speed_t kSpeeds[] = {B9600,    B19200,   B38400,   B57600,   B115200,
+                                          B230400,  B460800,  B500000,  B576000,  B921600,
+                                          B1000000, B1152000, B1500000, B2000000, B2500000,
+                                          B3000000, B3500000, B4000000};
+    static_assert(std::size(kSpeeds) == kSerialBaudRates.size());
+    const auto* found = std::find(kSerialBaudRates.begin(), kSerialBaudRates.end(), baud);
+    return found == kSerialBaudRates.end() ? 0 : kSpeeds[found - kSerialBaudRates.begin()];
 }
 
 namespace {

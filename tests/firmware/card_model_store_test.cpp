@@ -4,6 +4,7 @@
 #include "test_paths.hpp"
 
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 
 #include <filesystem>
 #include <fstream>
@@ -60,6 +61,16 @@ TEST(CardModelStore, CorruptOrForeignFilesAreIgnoredWithAWarning)
         EXPECT_NE(warning.find("ignored"), std::string::npos) << warning;
         EXPECT_EQ(warning.find('\n'), std::string::npos) << "one line: " << warning;
     }
+}
+
+TEST(CardModelStore, AFifoInPlaceOfTheFileIsIgnoredWithoutWaitingForAWriter)
+{
+    const std::string dir = testing_support::freshOutputDir("card_store_fifo");
+    firmware::CardModelStore store(dir);
+    ASSERT_EQ(::mkfifo(store.path().c_str(), 0600), 0);
+    std::string warning;
+    EXPECT_FALSE(store.load(warning).has_value());
+    EXPECT_EQ(warning, store.path() + ": not a regular file (a FIFO, a device or a socket); ignored");
 }
 
 TEST(CardModelStore, AFolderThatCannotBeMadeIsReportedNotThrown)

@@ -172,7 +172,8 @@ TEST(ConfigDefaults, GoodExampleLoads)
 Config everythingChanged()
 {
     Config c;
-    c.source.spec = "file:/data/a \"quoted\" \\ path\twith tab, é.avi";
+    // Quotes, a backslash and UTF-8 survive; control characters are refused (ConfigInputBounds).
+    c.source.spec = "file:/data/a \"quoted\" \\ path, é.avi";
     c.source.width = 1920;
     c.source.height = 1080;
     c.source.fps = 59.94;
@@ -565,9 +566,10 @@ TEST(ConfigProblems, SpecForms)
               "t.toml:2:8: display.spec: \"drm:\" needs a card after \"drm:\" " + displays);
     EXPECT_EQ(problemOf("[display]\nspec = \"x11\"\n"),
               "t.toml:2:8: display.spec: unknown display \"x11\" " + displays);
-    // Control characters in a value stay escaped: one problem, one line.
+    // Control characters in a value are refused, escaped: one problem, one line.
     EXPECT_EQ(problemOf("[display]\nspec = \"a\\nb\"\n"),
-              "t.toml:2:8: display.spec: unknown display \"a\\nb\" " + displays);
+              "t.toml:2:8: display.spec: control character 0x0A at byte 2 of \"a\\nb\" " +
+                  displays);
 }
 
 TEST(ConfigProblems, NestedUnknownKeys)

@@ -4,6 +4,7 @@
 #include "test_paths.hpp"
 
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 
 #include <filesystem>
 #include <fstream>
@@ -108,6 +109,16 @@ TEST(OverlayStateStore, CorruptOrForeignFilesAreIgnoredWithAWarning)
     ASSERT_TRUE(store.save("glasses", OverlayMode::Global));
     std::string warning;
     EXPECT_TRUE(store.load(warning).has_value()) << warning;
+}
+
+TEST(OverlayStateStore, AFifoInPlaceOfTheFileIsIgnoredWithoutWaitingForAWriter)
+{
+    const std::string dir = testing_support::freshOutputDir("overlay_store_fifo");
+    OverlayStateStore store(dir);
+    ASSERT_EQ(::mkfifo(store.path().c_str(), 0600), 0);
+    std::string warning;
+    EXPECT_FALSE(store.load(warning).has_value());
+    EXPECT_EQ(warning, store.path() + ": not a regular file (a FIFO, a device or a socket); ignored");
 }
 
 TEST(OverlayStateStore, AFolderThatCannotBeMadeIsReportedNotThrown)

@@ -5,6 +5,7 @@
 
 #include <termios.h>
 
+#include <array>
 #include <cstddef>
 #include <memory>
 #include <string>
@@ -12,8 +13,13 @@
 
 namespace platform {
 
+/// The rates a serial console can be set to: the standard ones termios names (B9600 ... B4000000).
+inline constexpr std::array<int, 18> kSerialBaudRates = {
+    9600,    19200,   38400,   57600,   115200,  230400,  460800,  500000,  576000,
+    921600,  1000000, 1152000, 1500000, 2000000, 2500000, 3000000, 3500000, 4000000};
+
 struct SerialConsoleOptions {
-    int baud = 115200;                 ///< 9600 ... 4000000, one of the standard rates
+    int baud = 115200;                 ///< one of kSerialBaudRates
     std::size_t maxLineLength = 256;   ///< characters echoed per line; the rest is not echoed
     std::size_t outputBuffer = 16384;  ///< replies queued while the UART drains them
     bool echo = true;                  ///< echo typed characters (a human at a terminal)
@@ -78,7 +84,7 @@ private:
     char lastError_[128] = "";
 };
 
-/// The termios speed constant for a rate in baud, or 0 when it is not a standard rate.
+/// The termios speed constant for a rate in baud, or 0 when it is not one of kSerialBaudRates.
 speed_t serialSpeed(int baud) noexcept;
 
 }  // namespace platform
