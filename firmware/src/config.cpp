@@ -4,10 +4,10 @@
 
 #include "firmware/config.hpp"
 
-#include "bounded_file.hpp"
 #include "config_schema.hpp"
 #include "config_string_checks.hpp"
 #include "config_value_text.hpp"
+#include "vision/bounded_file.hpp"
 
 #include <toml++/toml.h>
 
@@ -477,13 +477,13 @@ Config loadConfig(const ConfigRequest& request)
     std::vector<ConfigProblem> all;
 
     const std::string path = request.path.empty() ? kDefaultConfigPath : request.path;
-    BoundedFile file = readBoundedFile(path, kMaxFileBytes);
+    vision::BoundedFile file = vision::readBoundedFile(path, kMaxFileBytes);
     // Without --config a missing file just means "use the defaults"; one that exists but cannot be
     // read is still an error, so a broken installation does not silently run on defaults.
-    if (file.status != BoundedFile::Status::Missing || request.pathExplicit) {
+    if (file.status != vision::BoundedFile::Status::Missing || request.pathExplicit) {
         const Layer layer{path, {}, {}};
         Problems problems(layer);
-        if (file.status == BoundedFile::Status::Ok) {
+        if (file.status == vision::BoundedFile::Status::Ok) {
             applyText(file.text, config, problems, kEmptyFile);
             config.origin = path;
         } else {

@@ -15,6 +15,7 @@
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
+#include <atomic>
 #include <charconv>
 #include <csignal>
 #include <cstdint>
@@ -27,7 +28,9 @@
 
 namespace {
 
-firmware::FrameLoop* gLoop = nullptr;
+/// The running loop, for the stop signals; lock-free, so the handler may read it.
+std::atomic<firmware::FrameLoop*> gLoop{nullptr};
+static_assert(std::atomic<firmware::FrameLoop*>::is_always_lock_free);
 
 /// A TOML basic string holding `text` (for turning --source/--display into --set overrides).
 std::string tomlQuote(const std::string& text)
@@ -88,10 +91,16 @@ CLI::Validator frameCount()
         "N");
 }
 
-extern "C" void onStopSignal(int)
+extern "C" void onStopSignal(int signal)
 {
-    if (gLoop)
-        gLoop->requestStop();
+    if (firmware::FrameLoop* loop = gLoop.load()) {
+        loop->requestStop();  // the loop finishes its frame and saves what it must
+        return;
+    }
+    // Starting up (or rebuilding for reboot-mirror) there is nothing to finish: a stop then ends
+    // the process as the signal would, however long a device or file takes to open.
+    std::signal(signal, SIG_DFL);
+    std::raise(signal);
 }
 
 const char* const kFooter = R"(

@@ -1,6 +1,7 @@
 #include "state_file.hpp"
 
-#include "bounded_file.hpp"
+#include "vision/bounded_file.hpp"
+
 
 #include <cstdio>
 #include <filesystem>
@@ -29,10 +30,10 @@ bool createStateFolder(const std::string& dir, char* error, std::size_t errorCap
 std::optional<toml::table> readStateToml(const std::string& path, std::string& warning)
 {
     warning.clear();
-    const BoundedFile file = readBoundedFile(path, kMaxStateFileBytes);
-    if (file.status == BoundedFile::Status::Missing)
+    const vision::BoundedFile file = vision::readBoundedFile(path, kMaxStateFileBytes);
+    if (file.status == vision::BoundedFile::Status::Missing)
         return std::nullopt;
-    if (file.status != BoundedFile::Status::Ok) {
+    if (file.status != vision::BoundedFile::Status::Ok) {
         warning = path + ": " + file.problem + "; ignored";
         return std::nullopt;
     }

@@ -4,20 +4,22 @@
 
 #include "vision/haar_cascade.hpp"
 
+#include "vision/bounded_file.hpp"
+
 #include <cctype>
-#include <cerrno>
 #include <charconv>
 #include <cmath>
 #include <cstdlib>
-#include <cstring>
-#include <fstream>
 #include <memory>
-#include <sstream>
 #include <stdexcept>
 #include <type_traits>
 
 namespace vision {
 namespace {
+
+// OpenCV's largest face cascade (haarcascade_frontalface_default.xml) is 0.9 MB.
+constexpr std::size_t kMaxCascadeBytes = 16 * 1024 * 1024;
+constexpr int kMaxWindow = 64;  // OpenCV's face cascades use 20x20 and 24x24 windows
 
 struct Element {
     std::string name;
@@ -111,8 +113,11 @@ private:
         return std::string(text_.substr(start, pos_ - start));
     }
 
-    std::unique_ptr<Element> element()
+    std::unique_ptr<Element> element(int depth = 1)
     {
+        // The reader recurses per level: a bound keeps a hostile file from exhausting the stack.
+        if (depth > kMaxDepth)
+            fail(line_, "elements nested deeper than " + std::to_string(kMaxDepth) + " levels");
         auto e = std::make_unique<Element>();
         e->line = line_;
         advance(1);  // '<'
@@ -154,7 +159,7 @@ private:
                 advance(1);
                 return e;
             } else if (text_[pos_] == '<') {
-                e->children.push_back(element());
+                e->children.push_back(element(depth + 1));
             } else {
                 const std::size_t next = text_.find('<', pos_);
                 const std::size_t end = next == std::string_view::npos ? text_.size() : next;
@@ -163,6 +168,8 @@ private:
             }
         }
     }
+
+    static constexpr int kMaxDepth = 32;  // OpenCV's cascades nest 6 levels
 
     std::string_view text_;
     const std::string& name_;
@@ -284,6 +291,11 @@ HaarCascade parseHaarCascade(std::string_view text, const std::string& name)
     c.windowHeight = single<int>(cascade, "height", r);
     if (c.windowWidth < 3 || c.windowHeight < 3)
         r.fail(cascade.line, "window smaller than 3x3");
+    // Bounded so the products the detector forms of window sizes (areas, scaled windows) stay
+    // far inside 32 bits whatever the file says.
+    if (c.windowWidth > kMaxWindow || c.windowHeight > kMaxWindow)
+        r.fail(cascade.line, "window larger than " + std::to_string(kMaxWindow) + "x" +
+                                 std::to_string(kMaxWindow));
 
     const Element& features = need(cascade, "features", r);
     for (const auto& f : features.children) {
@@ -301,8 +313,10 @@ HaarCascade parseHaarCascade(std::string_view text, const std::string& name)
             hr.weight = n.next<float>();
             if (!n.atEnd())
                 r.fail(re->line, "expected 5 numbers (x y w h weight) in a rectangle");
+            // Written so no sum can overflow, whatever the file holds.
             if (hr.x < 0 || hr.y < 0 || hr.width <= 0 || hr.height <= 0 ||
-                hr.x + hr.width > c.windowWidth || hr.y + hr.height > c.windowHeight) {
+                hr.x > c.windowWidth || hr.y > c.windowHeight ||
+                hr.width > c.windowWidth - hr.x || hr.height > c.windowHeight - hr.y) {
                 r.fail(re->line, "rectangle outside the detection window");
             }
         }
@@ -377,15 +391,10 @@ HaarCascade parseHaarCascade(std::string_view text, const std::string& name)
 
 HaarCascade loadHaarCascade(const std::string& path)
 {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) {
-        throw std::runtime_error("cascade " + path + ": cannot open: " + std::strerror(errno));
-    }
-    std::ostringstream buffer;
-    buffer << in.rdbuf();
-    if (in.bad())
-        throw std::runtime_error("cascade " + path + ": read error");
-    return parseHaarCascade(buffer.str(), path);
+    const BoundedFile file = readBoundedFile(path, kMaxCascadeBytes);
+    if (file.status != BoundedFile::Status::Ok)
+        throw std::runtime_error("cascade " + path + ": " + file.problem);
+    return parseHaarCascade(file.text, path);
 }
 
 }  // namespace vision

@@ -1,4 +1,4 @@
-#include "bounded_file.hpp"
+#include "vision/bounded_file.hpp"
 
 #include <fcntl.h>
 #include <sys/stat.h>
@@ -7,7 +7,7 @@
 #include <cerrno>
 #include <cstring>
 
-namespace firmware {
+namespace vision {
 
 BoundedFile readBoundedFile(const std::string& path, std::size_t maxBytes)
 {
@@ -67,4 +67,4 @@ BoundedFile readBoundedFile(const std::string& path, std::size_t maxBytes)
     return result;
 }
 
-}  // namespace firmware
+}  // namespace vision
