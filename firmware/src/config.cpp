@@ -8,6 +8,7 @@
 #include "config_string_checks.hpp"
 #include "config_value_text.hpp"
 #include "vision/bounded_file.hpp"
+#include "vision/input_limits.hpp"
 
 #include <toml++/toml.h>
 
@@ -29,7 +30,7 @@ using config_schema::excerpt;
 using config_schema::quoted;
 using config_schema::Value;
 
-constexpr std::size_t kMaxFileBytes = 1024 * 1024;  // a config is a few hundred bytes
+constexpr std::size_t kMaxFileBytes = vision::limits::kConfigBytes;
 constexpr const char* kBuiltInOrigin = "built-in defaults";
 
 /// Where the TOML text being applied came from, for problem positions.

@@ -256,8 +256,15 @@ bool FrameLoop::render() noexcept
         return false;
     }
     formatHud();
-    if (!renderer_->draw(frame_.image, display_->width(), display_->height(), hud_))
-        MIRROR_LOG_WARN("render: %s", renderer_->lastError());
+    // A GL error usually repeats every frame: one line when it starts, one when it ends.
+    if (!renderer_->draw(frame_.image, display_->width(), display_->height(), hud_)) {
+        if (renderErrorFrames_++ == 0)
+            MIRROR_LOG_WARN("render: %s (not repeated while it lasts)", renderer_->lastError());
+    } else if (renderErrorFrames_ > 0) {
+        MIRROR_LOG_INFO("render: drawing without GL errors again after %llu frames",
+                        static_cast<unsigned long long>(renderErrorFrames_));
+        renderErrorFrames_ = 0;
+    }
     return true;
 }
 

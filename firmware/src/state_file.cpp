@@ -1,19 +1,12 @@
 #include "state_file.hpp"
 
 #include "vision/bounded_file.hpp"
-
+#include "vision/input_limits.hpp"
 
 #include <cstdio>
 #include <filesystem>
 
 namespace firmware {
-
-namespace {
-
-/// A state file is a few lines (a colour, an overlay choice per face).
-constexpr std::size_t kMaxStateFileBytes = 64 * 1024;
-
-}  // namespace
 
 bool createStateFolder(const std::string& dir, char* error, std::size_t errorCapacity)
 {
@@ -30,7 +23,7 @@ bool createStateFolder(const std::string& dir, char* error, std::size_t errorCap
 std::optional<toml::table> readStateToml(const std::string& path, std::string& warning)
 {
     warning.clear();
-    const vision::BoundedFile file = vision::readBoundedFile(path, kMaxStateFileBytes);
+    const vision::BoundedFile file = vision::readBoundedFile(path, vision::limits::kStateFileBytes);
     if (file.status == vision::BoundedFile::Status::Missing)
         return std::nullopt;
     if (file.status != vision::BoundedFile::Status::Ok) {

@@ -5,6 +5,7 @@
 #include "vision/haar_cascade.hpp"
 
 #include "vision/bounded_file.hpp"
+#include "vision/input_limits.hpp"
 
 #include <cctype>
 #include <charconv>
@@ -17,8 +18,6 @@
 namespace vision {
 namespace {
 
-// OpenCV's largest face cascade (haarcascade_frontalface_default.xml) is 0.9 MB.
-constexpr std::size_t kMaxCascadeBytes = 16 * 1024 * 1024;
 constexpr int kMaxWindow = 64;  // OpenCV's face cascades use 20x20 and 24x24 windows
 
 struct Element {
@@ -391,7 +390,7 @@ HaarCascade parseHaarCascade(std::string_view text, const std::string& name)
 
 HaarCascade loadHaarCascade(const std::string& path)
 {
-    const BoundedFile file = readBoundedFile(path, kMaxCascadeBytes);
+    const BoundedFile file = readBoundedFile(path, limits::kCascadeBytes);
     if (file.status != BoundedFile::Status::Ok)
         throw std::runtime_error("cascade " + path + ": " + file.problem);
     return parseHaarCascade(file.text, path);

@@ -182,6 +182,8 @@ private:
     bool sourceLost_ = false;
     bool frameBad_ = false;
     bool displayDown_ = false;
+    /// Frames in a row whose drawing raised a GL error: the first is logged, then the recovery.
+    std::uint64_t renderErrorFrames_ = 0;
     bool snapshotReplyPending_ = false;
     std::uint64_t framesShown_ = 0;
     std::uint64_t badFrames_ = 0;
