@@ -1,5 +1,10 @@
 // aam-build: the offline Active Appearance Model builder (§5). So far: `mesh` reads CANDIDE-3 and
-// reports the dissertation's cut of it.
+// reports the dissertation's cut of it; `draw` pictures an annotated image with its points numbered;
+// `fit` fits the cut CANDIDE to one annotated image (5.3.1, eq. 44) and pictures the fit.
+#include "annotation_drawing.hpp"
+#include "annotation_files.hpp"
+#include "annotation_schemes.hpp"
+#include "candide_fit.hpp"
 #include "wfm_reader.hpp"
 
 #include "vision/candide_reduction.hpp"
@@ -7,9 +12,15 @@
 #include <CLI/CLI.hpp>
 #include <cstdio>
 #include <exception>
+#include <map>
+#include <opencv2/imgcodecs.hpp>
 #include <string>
 
 namespace {
+
+aam::Annotation loadAnnotation(const std::string& path) {
+    return path.ends_with(".asf") ? aam::loadAsf(path) : aam::loadPts(path);
+}
 
 int describeMesh(const std::string& wfm) {
     const vision::CandideMesh full = aam::loadWfm(wfm);
@@ -21,6 +32,72 @@ int describeMesh(const std::string& wfm) {
     return 0;
 }
 
+int drawPoints(const std::string& points, const std::string& image, const std::string& out) {
+    cv::Mat picture = cv::imread(image, cv::IMREAD_COLOR);
+    if (picture.empty()) throw std::runtime_error(image + ": cannot read the image");
+    std::vector<Eigen::Vector2d> marked = loadAnnotation(points).points;
+    picture = aam::closeUp(picture, {&marked});
+    aam::drawNumberedPoints(picture, marked);
+    if (!cv::imwrite(out, picture)) throw std::runtime_error(out + ": cannot write the picture");
+    return 0;
+}
+
+struct FitRequest {
+    std::string wfm, scheme;
+    std::vector<std::string> points;
+    std::string image, out;
+    bool perPoint = false;
+};
+
+void drawFit(const FitRequest& r, const vision::CandideMesh& face, const std::vector<aam::MarkedPoint>& marked,
+             const aam::CandideFit& fit) {
+    cv::Mat picture = cv::imread(r.image, cv::IMREAD_COLOR);
+    if (picture.empty()) throw std::runtime_error(r.image + ": cannot read the image");
+    std::vector<Eigen::Vector2d> projected = aam::projectedVertices(face, fit);
+    std::vector<Eigen::Vector2d> at;
+    std::vector<std::string> labels;
+    for (const aam::MarkedPoint& m : marked) {
+        at.push_back(m.image);
+        labels.push_back(std::to_string(face.candideNumber[static_cast<std::size_t>(m.vertex)]));
+    }
+    picture = aam::closeUp(picture, {&projected, &at});
+    aam::drawMesh(picture, face, projected);
+    aam::drawNumberedPoints(picture, at, labels);
+    if (!cv::imwrite(r.out, picture)) throw std::runtime_error(r.out + ": cannot write the picture");
+}
+
+void printUnits(const vision::CandideMesh& face, const aam::CandideFit& fit) {
+    for (std::size_t j = 0; j < fit.sigma.size(); ++j) std::printf("  sigma %-30s %+.3f\n", face.shapeUnits[j].name.c_str(), fit.sigma[j]);
+    for (std::size_t j = 0; j < fit.tau.size(); ++j) std::printf("  tau   %-30s %+.3f\n", face.animationUnits[j].name.c_str(), fit.tau[j]);
+}
+
+/// Fits every file; one line each, the units of a single file, the mean residual per vertex.
+int fitFiles(const FitRequest& r) {
+    const vision::CandideMesh face = vision::reduceCandideForTracking(aam::loadWfm(r.wfm));
+    std::map<int, std::pair<double, int>> perVertex;  // CANDIDE number: residual sum, count
+    double rmsSum = 0;
+    for (const std::string& path : r.points) {
+        const auto marked = aam::markedPoints(aam::schemeNamed(r.scheme), loadAnnotation(path), face);
+        const aam::CandideFit fit = aam::fitCandide(face, marked);
+        std::printf("fit %s: points=%zu scale=%.2f roll_deg=%.2f rms_px=%.2f max_px=%.2f\n", path.c_str(), marked.size(),
+                    fit.scale(), fit.rollRadians() * 57.29577951308232, fit.rmsResidualPx, fit.maxResidualPx);
+        rmsSum += fit.rmsResidualPx;
+        const auto projected = aam::projectedVertices(face, fit);
+        for (const aam::MarkedPoint& m : marked) {
+            auto& [sum, count] = perVertex[face.candideNumber[static_cast<std::size_t>(m.vertex)]];
+            sum += (projected[static_cast<std::size_t>(m.vertex)] - m.image).norm();
+            ++count;
+        }
+        if (r.points.size() == 1) printUnits(face, fit);
+        if (!r.out.empty() && path == r.points.front()) drawFit(r, face, marked, fit);
+    }
+    if (r.perPoint) {
+        for (const auto& [vertex, sc] : perVertex) std::printf("  vertex %3d: mean residual %.2f px\n", vertex, sc.first / sc.second);
+    }
+    std::printf("fit: files=%zu mean_rms_px=%.2f\n", r.points.size(), rmsSum / static_cast<double>(r.points.size()));
+    return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -29,9 +106,24 @@ int main(int argc, char** argv) {
     std::string wfm = "../shared/data/candide3/candide3.wfm";
     auto* mesh = app.add_subcommand("mesh", "read CANDIDE-3 and report the tracked cut of it");
     mesh->add_option("--wfm", wfm, "the CANDIDE-3 .wfm file")->capture_default_str();
+    std::string points, image, out = "/tmp/aam-points.png";
+    auto* draw = app.add_subcommand("draw", "picture an annotated image with its points numbered");
+    draw->add_option("--points", points, "the .asf or .pts file")->required();
+    draw->add_option("--image", image, "the image it annotates")->required();
+    draw->add_option("--out", out, "the PNG to write")->capture_default_str();
+    FitRequest fitRequest{wfm, "imm", {}, "", "", false};
+    auto* fit = app.add_subcommand("fit", "fit the tracked CANDIDE to one annotated image (5.3.1)");
+    fit->add_option("--wfm", fitRequest.wfm, "the CANDIDE-3 .wfm file")->capture_default_str();
+    fit->add_option("--scheme", fitRequest.scheme, "the annotation's scheme: imm, fgnet, ibug")->capture_default_str();
+    fit->add_option("--points", fitRequest.points, "the .asf or .pts files")->required();
+    fit->add_option("--image", fitRequest.image, "the image the first file annotates (with --out)");
+    fit->add_option("--out", fitRequest.out, "a PNG of the first file's fitted mesh over its image");
+    fit->add_flag("--per-point", fitRequest.perPoint, "the mean residual of each CANDIDE vertex");
     CLI11_PARSE(app, argc, argv);
     try {
-        return describeMesh(wfm);
+        if (*mesh) return describeMesh(wfm);
+        if (*fit) return fitFiles(fitRequest);
+        return drawPoints(points, image, out);
     } catch (const std::exception& e) {
         std::fprintf(stderr, "aam-build: %s\n", e.what());
         return 1;
