@@ -32,12 +32,26 @@ int describeMesh(const std::string& wfm) {
     return 0;
 }
 
-int drawPoints(const std::string& points, const std::string& image, const std::string& out) {
+/// Each point numbered; with a scheme, "point:vertex" where the table maps it to a CANDIDE vertex.
+std::vector<std::string> pointLabels(const std::string& scheme, std::size_t count) {
+    std::vector<std::string> labels;
+    for (std::size_t i = 0; i < count; ++i) labels.push_back(std::to_string(i));
+    if (scheme.empty()) return labels;
+    for (const aam::SchemeRow& row : aam::schemeNamed(scheme).rows) {
+        for (int k = 0; k < row.at.count(); ++k) {
+            const auto p = static_cast<std::size_t>(row.at.points[static_cast<std::size_t>(k)]);
+            if (p < count) labels[p] += ":" + std::to_string(row.candideVertex);
+        }
+    }
+    return labels;
+}
+
+int drawPoints(const std::string& points, const std::string& image, const std::string& scheme, const std::string& out) {
     cv::Mat picture = cv::imread(image, cv::IMREAD_COLOR);
     if (picture.empty()) throw std::runtime_error(image + ": cannot read the image");
     std::vector<Eigen::Vector2d> marked = loadAnnotation(points).points;
     picture = aam::closeUp(picture, {&marked});
-    aam::drawNumberedPoints(picture, marked);
+    aam::drawNumberedPoints(picture, marked, pointLabels(scheme, marked.size()));
     if (!cv::imwrite(out, picture)) throw std::runtime_error(out + ": cannot write the picture");
     return 0;
 }
@@ -106,10 +120,11 @@ int main(int argc, char** argv) {
     std::string wfm = "../shared/data/candide3/candide3.wfm";
     auto* mesh = app.add_subcommand("mesh", "read CANDIDE-3 and report the tracked cut of it");
     mesh->add_option("--wfm", wfm, "the CANDIDE-3 .wfm file")->capture_default_str();
-    std::string points, image, out = "/tmp/aam-points.png";
+    std::string points, image, drawScheme, out = "/tmp/aam-points.png";
     auto* draw = app.add_subcommand("draw", "picture an annotated image with its points numbered");
     draw->add_option("--points", points, "the .asf or .pts file")->required();
     draw->add_option("--image", image, "the image it annotates")->required();
+    draw->add_option("--scheme", drawScheme, "label each point with its CANDIDE vertex: imm, fgnet, ibug");
     draw->add_option("--out", out, "the PNG to write")->capture_default_str();
     FitRequest fitRequest{wfm, "imm", {}, "", "", false};
     auto* fit = app.add_subcommand("fit", "fit the tracked CANDIDE to one annotated image (5.3.1)");
@@ -123,7 +138,7 @@ int main(int argc, char** argv) {
     try {
         if (*mesh) return describeMesh(wfm);
         if (*fit) return fitFiles(fitRequest);
-        return drawPoints(points, image, out);
+        return drawPoints(points, image, drawScheme, out);
     } catch (const std::exception& e) {
         std::fprintf(stderr, "aam-build: %s\n", e.what());
         return 1;
