@@ -87,11 +87,12 @@ void printUnits(const vision::CandideMesh& face, const aam::CandideFit& fit) {
 
 /// Fits every file; one line each, the units of a single file, the mean residual per vertex.
 int fitFiles(const FitRequest& r) {
+    const aam::AnnotationScheme& scheme = aam::schemeNamed(r.scheme);  // a bad name before any reading
     const vision::CandideMesh face = vision::reduceCandideForTracking(aam::loadWfm(r.wfm));
     std::map<int, std::pair<double, int>> perVertex;  // CANDIDE number: residual sum, count
     double rmsSum = 0;
     for (const std::string& path : r.points) {
-        const auto marked = aam::markedPoints(aam::schemeNamed(r.scheme), loadAnnotation(path), face);
+        const auto marked = aam::markedPoints(scheme, loadAnnotation(path), face);
         const aam::CandideFit fit = aam::fitCandide(face, marked);
         std::printf("fit %s: points=%zu scale=%.2f roll_deg=%.2f rms_px=%.2f max_px=%.2f\n", path.c_str(), marked.size(),
                     fit.scale(), fit.rollRadians() * 57.29577951308232, fit.rmsResidualPx, fit.maxResidualPx);
