@@ -1,10 +1,13 @@
 // aam-build: the offline Active Appearance Model builder (§5). So far: `mesh` reads CANDIDE-3 and
 // reports the dissertation's cut of it; `draw` pictures an annotated image with its points numbered;
-// `fit` fits the cut CANDIDE to one annotated image (5.3.1, eq. 44) and pictures the fit.
+// `fit` fits the cut CANDIDE to annotated images (5.3.1, eq. 44) and pictures a fit; `shapes`
+// synthesizes the training shapes from the fits and aligns them (weighted Procrustes).
 #include "annotation_drawing.hpp"
 #include "annotation_files.hpp"
 #include "annotation_schemes.hpp"
 #include "candide_fit.hpp"
+#include "shape_alignment.hpp"
+#include "shape_synthesis.hpp"
 #include "wfm_reader.hpp"
 
 #include "vision/candide_reduction.hpp"
@@ -113,6 +116,43 @@ int fitFiles(const FitRequest& r) {
     return 0;
 }
 
+/// The mean shape, scaled into a square picture, its triangles drawn.
+void drawMeanShape(const vision::CandideMesh& face, aam::Shape2d mean, const std::string& out) {
+    Eigen::Vector2d low = mean[0], high = mean[0];
+    for (const auto& p : mean) {
+        low = low.cwiseMin(p);
+        high = high.cwiseMax(p);
+    }
+    const double scale = 700.0 / (high - low).maxCoeff();
+    for (auto& p : mean) p = (p - low) * scale + Eigen::Vector2d(50, 50);
+    cv::Mat picture(800, 800, CV_8UC3, cv::Scalar(255, 255, 255));
+    aam::drawMesh(picture, face, mean);
+    if (!cv::imwrite(out, picture)) throw std::runtime_error(out + ": cannot write the picture");
+}
+
+/// Every file fitted, its shapes synthesized, all aligned; a summary line.
+int alignTrainingShapes(const FitRequest& r) {
+    const aam::AnnotationScheme& scheme = aam::schemeNamed(r.scheme);
+    const vision::CandideMesh face = vision::reduceCandideForTracking(aam::loadWfm(r.wfm));
+    std::vector<aam::Shape2d> shapes;
+    aam::Shape2d frontal;  // the first image's, turned 0 and neutral: the frame they are aligned in
+    aam::SynthesisOptions synthesis;
+    for (const std::string& path : r.points) {
+        const aam::CandideFit fit = aam::fitCandide(face, aam::markedPoints(scheme, loadAnnotation(path), face));
+        if (frontal.empty()) frontal = aam::posedShape(face, fit, 0, 0, std::vector<float>(fit.tau.size(), 0.f));
+        for (auto& shape : aam::synthesizeShapes(face, fit, synthesis)) shapes.push_back(std::move(shape));
+        ++synthesis.seed;  // each image its own poses
+    }
+    aam::AlignmentOptions alignment;
+    alignment.reference = &frontal;
+    const aam::AlignedShapes aligned = aam::alignShapes(shapes, alignment);
+    std::printf("shapes: images=%zu shapes=%zu vertices=%zu iterations=%d weight_min=%.3g weight_max=%.3g\n",
+                r.points.size(), shapes.size(), face.vertices.size(), aligned.iterations, aligned.weights.minCoeff(),
+                aligned.weights.maxCoeff());
+    if (!r.out.empty()) drawMeanShape(face, aligned.mean, r.out);
+    return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -135,8 +175,15 @@ int main(int argc, char** argv) {
     fit->add_option("--image", fitRequest.image, "the image the first file annotates (with --out)");
     fit->add_option("--out", fitRequest.out, "a PNG of the first file's fitted mesh over its image");
     fit->add_flag("--per-point", fitRequest.perPoint, "the mean residual of each CANDIDE vertex");
+    FitRequest shapesRequest{wfm, "imm", {}, "", "", false};
+    auto* shapes = app.add_subcommand("shapes", "synthesize the training shapes from the fits and align them (5.3.1)");
+    shapes->add_option("--wfm", shapesRequest.wfm, "the CANDIDE-3 .wfm file")->capture_default_str();
+    shapes->add_option("--scheme", shapesRequest.scheme, "the annotations' scheme: imm, fgnet, ibug")->capture_default_str();
+    shapes->add_option("--points", shapesRequest.points, "the .asf or .pts files, one frontal image per person")->required();
+    shapes->add_option("--out", shapesRequest.out, "a PNG of the aligned mean shape");
     CLI11_PARSE(app, argc, argv);
     try {
+        if (*shapes) return alignTrainingShapes(shapesRequest);
         if (*mesh) return describeMesh(wfm);
         if (*fit) return fitFiles(fitRequest);
         return drawPoints(points, image, drawScheme, out);
