@@ -1,12 +1,14 @@
 // aam-build: the offline Active Appearance Model builder (§5). So far: `mesh` reads CANDIDE-3 and
 // reports the dissertation's cut of it; `draw` pictures an annotated image with its points numbered;
 // `fit` fits the cut CANDIDE to annotated images (5.3.1, eq. 44) and pictures a fit; `shapes`
-// synthesizes the training shapes from the fits and aligns them (weighted Procrustes).
+// synthesizes the training shapes from the fits, aligns them (weighted Procrustes) and counts
+// the shape modes.
 #include "annotation_drawing.hpp"
 #include "annotation_files.hpp"
 #include "annotation_schemes.hpp"
 #include "candide_fit.hpp"
 #include "shape_alignment.hpp"
+#include "shape_modes.hpp"
 #include "shape_synthesis.hpp"
 #include "wfm_reader.hpp"
 
@@ -146,9 +148,11 @@ int alignTrainingShapes(const FitRequest& r) {
     aam::AlignmentOptions alignment;
     alignment.reference = &frontal;
     const aam::AlignedShapes aligned = aam::alignShapes(shapes, alignment);
-    std::printf("shapes: images=%zu shapes=%zu vertices=%zu iterations=%d weight_min=%.3g weight_max=%.3g\n",
+    const aam::ShapeModes model = aam::shapeModes(aligned);
+    std::printf("shapes: images=%zu shapes=%zu vertices=%zu iterations=%d weight_min=%.3g weight_max=%.3g "
+                "modes=%ld (98%% of the variance)\n",
                 r.points.size(), shapes.size(), face.vertices.size(), aligned.iterations, aligned.weights.minCoeff(),
-                aligned.weights.maxCoeff());
+                aligned.weights.maxCoeff(), static_cast<long>(model.modes.cols()));
     if (!r.out.empty()) drawMeanShape(face, aligned.mean, r.out);
     return 0;
 }
