@@ -217,6 +217,26 @@ TEST(FaceDetector, IntegralTablesMatchBruteForce)
     }
 }
 
+TEST(FaceDetector, IntegralTablesPastTwoToThe31AreExactModuloTwoToThe32)
+{
+    // A white 4096x2304 frame sums to 2.4e9 > 2^31: the tables wrap (in unsigned arithmetic,
+    // UBSan proves it), and a window's sum taken from them is still exact.
+    const int w = 4096;
+    const int h = 2304;
+    ScaledIntegrals t({w, h}, false);
+    const Gray g(w, h, 255);
+    t.prepare(g.view(), w, h, false);
+    const int stride = t.stride();
+    const auto corner = [&](int x, int y) {
+        return static_cast<std::uint32_t>(t.sum()[static_cast<std::ptrdiff_t>(y) * stride + x]);
+    };
+    EXPECT_EQ(corner(w, h), static_cast<std::uint32_t>(255ull * w * h));
+    // The last 24x24 window: 576 pixels of 255.
+    const std::uint32_t window =
+        corner(w, h) - corner(w - 24, h) - corner(w, h - 24) + corner(w - 24, h - 24);
+    EXPECT_EQ(window, 255u * 576u);
+}
+
 TEST(FaceDetector, EdgeCascadeWindowDecisions)
 {
     WindowEvaluator evaluate(parseHaarCascade(kEdgeCascade, "edge"), {64, 48});

@@ -68,7 +68,9 @@ std::int32_t rowLeaf(std::int64_t q40)
 
 inline std::int32_t rectSum(const std::int32_t* p, const std::int32_t* o) noexcept
 {
-    return p[o[0]] - p[o[1]] - p[o[2]] + p[o[3]];
+    // Modulo 2^32, as the table wraps on big images (scaled_integrals.cpp): the sum is exact.
+    const auto at = [p](std::int32_t i) { return static_cast<std::uint32_t>(p[i]); };
+    return static_cast<std::int32_t>(at(o[0]) - at(o[1]) - at(o[2]) + at(o[3]));
 }
 
 inline std::int64_t featureValue(const FixedFeature& f, const std::int32_t* p) noexcept

@@ -47,12 +47,17 @@ constexpr int kAliveDivisor = 4;
     const std::int32_t* const prefix##c2 = base + prefix##o[2][2]; \
     const std::int32_t* const prefix##c3 = base + prefix##o[2][3]; \
     const std::int32_t prefix##wc = (f).weight[2]
-#define MIRROR_VJ_FEATURE2(prefix, j)                                               \
-    (prefix##wa * (prefix##a0[j] - prefix##a1[j] - prefix##a2[j] + prefix##a3[j]) + \
-     prefix##wb * (prefix##b0[j] - prefix##b1[j] - prefix##b2[j] + prefix##b3[j]))
+// A rectangle's sum modulo 2^32, as the table wraps on big images (scaled_integrals.cpp).
+#define MIRROR_VJ_RECT(p0, p1, p2, p3, j)                                        \
+    static_cast<std::int32_t>(                                                   \
+        static_cast<std::uint32_t>(p0[j]) - static_cast<std::uint32_t>(p1[j]) - \
+        static_cast<std::uint32_t>(p2[j]) + static_cast<std::uint32_t>(p3[j]))
+#define MIRROR_VJ_FEATURE2(prefix, j)                                                  \
+    (prefix##wa * MIRROR_VJ_RECT(prefix##a0, prefix##a1, prefix##a2, prefix##a3, j) + \
+     prefix##wb * MIRROR_VJ_RECT(prefix##b0, prefix##b1, prefix##b2, prefix##b3, j))
 #define MIRROR_VJ_FEATURE(prefix, j) \
     (MIRROR_VJ_FEATURE2(prefix, j) + \
-     prefix##wc * (prefix##c0[j] - prefix##c1[j] - prefix##c2[j] + prefix##c3[j]))
+     prefix##wc * MIRROR_VJ_RECT(prefix##c0, prefix##c1, prefix##c2, prefix##c3, j))
 
 MIRROR_SIMD_BODY void rowStumpPassBody(const RowStump& st, const std::int32_t* base, bool split,
                                        int n, const float* __restrict vnf,

@@ -116,13 +116,15 @@ void ScaledIntegrals::integrate(int dw, int dh) noexcept
         const std::int32_t* s0 = s1 - stride_;
         std::uint32_t* q1 = sqsum_.data() + static_cast<std::ptrdiff_t>(y + 1) * stride_ + 1;
         const std::uint32_t* q0 = q1 - stride_;
-        std::int32_t rs = 0;
+        std::uint32_t rs = 0;
         std::uint32_t rq = 0;
         for (int x = 0; x < dw; ++x) {
             const std::uint32_t v = in[x];
-            rs += static_cast<std::int32_t>(v);
-            rq += v * v;  // wraps like OpenCV's 32-bit table; window sums stay exact
-            s1[x] = s0[x] + rs;
+            // Both tables wrap modulo 2^32 past 8.4 Mpx (like OpenCV's 32-bit ones), in unsigned
+            // arithmetic where that is defined: a window's sum taken from them stays exact.
+            rs += v;
+            rq += v * v;
+            s1[x] = static_cast<std::int32_t>(static_cast<std::uint32_t>(s0[x]) + rs);
             q1[x] = q0[x] + rq;
         }
     }
