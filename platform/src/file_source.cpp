@@ -1,5 +1,9 @@
 #include "platform/file_source.hpp"
 
+#include "image_header.hpp"
+#include "vision/bounded_file.hpp"
+#include "vision/input_limits.hpp"
+
 #include <fcntl.h>
 #include <glob.h>
 #include <sys/stat.h>
@@ -97,6 +101,28 @@ int videoBackend()
 }
 
 /// "23.98" style: two decimals without trailing zeros.
+/// Why an image file gave no frame, for the one-line start-up error.
+std::string whyNoFrame(const std::string& file)
+{
+    const vision::BoundedFile read = vision::readBoundedFile(file, vision::limits::kImageFileBytes);
+    if (read.status != vision::BoundedFile::Status::Ok)
+        return read.problem;
+    const std::string wrong = checkImageHeader(
+        reinterpret_cast<const std::uint8_t*>(read.text.data()), read.text.size());
+    return wrong.empty() ? "cannot decode (not a video or image OpenCV can read)" : wrong;
+}
+
+/// A video whose frames are beyond vision/input_limits.hpp is refused at start-up.
+void checkVideoSize(const std::string& path, double width, double height)
+{
+    using vision::limits::kMaxImagePixels;
+    using vision::limits::kMaxImageSide;
+    if (width > kMaxImageSide || height > kMaxImageSide || width * height > kMaxImagePixels)
+        throw fileError(path, "video frames of " + std::to_string(std::llround(width)) + "x" +
+                                  std::to_string(std::llround(height)) + " (allowed: up to " +
+                                  std::to_string(kMaxImageSide) + " on a side and 7680x4320)");
+}
+
 std::string formatFps(double fps)
 {
     char text[32];
@@ -107,6 +133,41 @@ std::string formatFps(double fps)
     if (!s.empty() && s.back() == '.')
         s.pop_back();
     return s;
+}
+
+/// Reads one image file into `bytes` (no allocation: it holds the largest file of the pass) and
+/// decodes it into `decoded`, unless it is not a regular file, outgrew `bytes`, or its header
+/// claims a picture beyond vision/input_limits.hpp. False when there is no frame in it.
+bool decodeImageFile(const std::string& file, std::vector<std::uint8_t>& bytes, cv::Mat& decoded)
+{
+    const int fd = ::open(file.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+    if (fd < 0)
+        return false;
+    struct stat st {};
+    bool ok = ::fstat(fd, &st) == 0 && S_ISREG(st.st_mode);
+    std::size_t used = 0;
+    while (ok) {
+        if (used == bytes.size()) {
+            // Grew since start-up: reading further would need a larger buffer.
+            char probe;
+            ok = ::read(fd, &probe, 1) == 0;
+            break;
+        }
+        const ssize_t n = ::read(fd, bytes.data() + used, bytes.size() - used);
+        if (n < 0 && errno == EINTR)
+            continue;
+        if (n <= 0) {
+            ok = n == 0;
+            break;
+        }
+        used += static_cast<std::size_t>(n);
+    }
+    ::close(fd);
+    if (!ok || used == 0 || !imageHeaderWithinLimits(bytes.data(), used))
+        return false;
+    const cv::Mat encoded(1, static_cast<int>(used), CV_8UC1, bytes.data());
+    cv::imdecode(encoded, cv::IMREAD_COLOR, &decoded);
+    return !decoded.empty();
 }
 
 }  // namespace
@@ -175,47 +236,12 @@ struct FileSource::Impl {
         return true;
     }
 
-    /// Reads one image file into `fileBytes` and decodes it into `decoded`. No allocation of ours:
-    /// POSIX read into the preallocated buffer, decode into the reused scratch image.
-    bool decodeImage(const std::string& file)
-    {
-        const int fd = ::open(file.c_str(), O_RDONLY | O_CLOEXEC);
-        if (fd < 0)
-            return false;
-        std::size_t used = 0;
-        bool ok = true;
-        for (;;) {
-            if (used == fileBytes.size()) {
-                // Grew since start-up: reading further would need a larger buffer.
-                char probe;
-                ok = ::read(fd, &probe, 1) == 0;
-                break;
-            }
-            const ssize_t n = ::read(fd, fileBytes.data() + used, fileBytes.size() - used);
-            if (n < 0 && errno == EINTR)
-                continue;
-            if (n < 0) {
-                ok = false;
-                break;
-            }
-            if (n == 0)
-                break;
-            used += static_cast<std::size_t>(n);
-        }
-        ::close(fd);
-        if (!ok || used == 0)
-            return false;
-        const cv::Mat bytes(1, static_cast<int>(used), CV_8UC1, fileBytes.data());
-        cv::imdecode(bytes, cv::IMREAD_COLOR, &decoded);
-        return !decoded.empty();
-    }
-
     Step readImage()
     {
         if (imageIndex >= images.size())
             return Step::End;
         const std::size_t index = imageIndex++;
-        if (decodeImage(images[index]) && adopt(decoded))
+        if (decodeImageFile(images[index], fileBytes, decoded) && adopt(decoded))
             return Step::Frame;
         skippedFrame(images[index], index);
         return Step::Skipped;
@@ -323,27 +349,39 @@ FileSource::FileSource(const std::string& path, bool loop, ReplayRate rate, doub
     std::string lastSkipped;
     double nativeFps = 0.0;
     if (video) {
-        if (!capture.open(path, videoBackend()) || !capture.read(first) || first.empty())
+        if (!capture.open(path, videoBackend()))
             throw fileError(path, "cannot decode (not a video or image OpenCV can read)");
+        // The container's size, before a frame is decoded; the decoded one is checked below.
+        checkVideoSize(path, capture.get(cv::CAP_PROP_FRAME_WIDTH),
+                       capture.get(cv::CAP_PROP_FRAME_HEIGHT));
+        if (!capture.read(first) || first.empty())
+            throw fileError(path, "cannot decode (not a video or image OpenCV can read)");
+        checkVideoSize(path, first.cols, first.rows);
         nativeFps = capture.get(cv::CAP_PROP_FPS);
     } else {
+        // Files over the bound are left out of the buffer: they are skipped like undecodable ones.
         std::size_t largest = 0;
         for (const auto& file : images) {
             struct stat st {};
-            if (::stat(file.c_str(), &st) == 0)
+            if (::stat(file.c_str(), &st) == 0 &&
+                static_cast<std::size_t>(st.st_size) <= vision::limits::kImageFileBytes)
                 largest = std::max(largest, static_cast<std::size_t>(st.st_size));
         }
         fileBytes.resize(largest);
         for (; firstIndex < images.size(); ++firstIndex) {
-            first = cv::imread(images[firstIndex], cv::IMREAD_COLOR);
-            if (!first.empty())
+            if (decodeImageFile(images[firstIndex], fileBytes, first))
                 break;
             ++skippedAtStart;
             lastSkipped = images[firstIndex];
         }
         if (first.empty()) {
             if (images.size() == 1)
-                throw fileError(path, "cannot decode (not a video or image OpenCV can read)");
+                throw fileError(path, (images[0] == path ? std::string()
+                                                         : std::filesystem::path(images[0])
+                                                                   .filename()
+                                                                   .string() +
+                                                               ": ") +
+                                          whyNoFrame(images[0]));
             throw fileError(path, "cannot decode any of " + std::to_string(images.size()) +
                                       " files (not images OpenCV can read)");
         }

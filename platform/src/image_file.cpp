@@ -1,9 +1,9 @@
 #include "platform/image_file.hpp"
 
-#include <sys/stat.h>
+#include "image_header.hpp"
+#include "vision/bounded_file.hpp"
+#include "vision/input_limits.hpp"
 
-#include <cerrno>
-#include <cstring>
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
@@ -14,26 +14,26 @@ namespace platform {
 vision::ImageBuffer loadImageFile(const std::string& path, const char* what)
 {
     const std::string prefix = std::string(what) + " " + path + ": ";
-    // Checked first so the common mistakes get their own words; imread only says "empty".
-    struct stat st {};
-    if (::stat(path.c_str(), &st) != 0) {
-        const int error = errno;
-        throw std::runtime_error(prefix + (error == ENOENT ? std::string("no such file")
-                                                           : std::string(std::strerror(error))));
-    }
-    if (!S_ISREG(st.st_mode))
-        throw std::runtime_error(prefix + "not a regular file");
+    const vision::BoundedFile file = vision::readBoundedFile(path, vision::limits::kImageFileBytes);
+    if (file.status == vision::BoundedFile::Status::Missing)
+        throw std::runtime_error(prefix + "no such file");
+    if (file.status != vision::BoundedFile::Status::Ok)
+        throw std::runtime_error(prefix + file.problem);
+    const auto* bytes = reinterpret_cast<const std::uint8_t*>(file.text.data());
+    // From the header, before the decoder allocates: a small file can claim gigapixels.
+    if (const std::string wrong = checkImageHeader(bytes, file.text.size()); !wrong.empty())
+        throw std::runtime_error(prefix + wrong);
 
     cv::Mat bgr;
     try {
-        bgr = cv::imread(path, cv::IMREAD_COLOR);
+        const cv::Mat encoded(1, static_cast<int>(file.text.size()), CV_8UC1,
+                              const_cast<std::uint8_t*>(bytes));
+        bgr = cv::imdecode(encoded, cv::IMREAD_COLOR);
     } catch (const cv::Exception& e) {
         throw std::runtime_error(prefix + "not an image OpenCV can read (" + e.err + ")");
     }
     if (bgr.empty() || bgr.type() != CV_8UC3)
         throw std::runtime_error(prefix + "not an image OpenCV can read");
-    if (bgr.cols > 16384 || bgr.rows > 16384)
-        throw std::runtime_error(prefix + "larger than 16384 pixels on a side");
 
     vision::ImageBuffer rgb(bgr.cols, bgr.rows, vision::PixelFormat::RGB24);
     const vision::ImageView view = rgb.view();

@@ -4,11 +4,14 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdint>
 #include <fstream>
+#include <iterator>
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 namespace {
 
@@ -98,11 +101,60 @@ TEST(ImageFile, NonImageIsOneClearLine)
     const std::string dir = testing_support::freshOutputDir("image_file_bad");
     const std::string text = dir + "/notes.png";
     std::ofstream(text) << "this is not a picture\n";
-    EXPECT_EQ(loadError(text), "card picture " + text + ": not an image OpenCV can read");
+    const std::string notImage = ": not a PNG, JPEG or BMP file (no picture size in its header)";
+    EXPECT_EQ(loadError(text), "card picture " + text + notImage);
     const std::string empty = dir + "/empty.jpg";
     std::ofstream{empty};
-    EXPECT_EQ(loadError(empty), "card picture " + empty + ": not an image OpenCV can read");
-    EXPECT_EQ(loadError(dir), "card picture " + dir + ": not a regular file");
+    EXPECT_EQ(loadError(empty), "card picture " + empty + notImage);
+    EXPECT_EQ(loadError(dir), "card picture " + dir + ": cannot read file: Is a directory");
+    EXPECT_EQ(loadError("/dev/zero"),
+              "card picture /dev/zero: not a regular file (a FIFO, a device or a socket)");
+    // A PNG whose header is fine but whose data is not: the decoder's turn.
+    const std::string broken = dir + "/broken.png";
+    std::ofstream(broken, std::ios::binary)
+        << std::string("\x89PNG\r\n\x1a\n\0\0\0\x0dIHDR\0\0\0\x10\0\0\0\x10", 24) << "junk";
+    EXPECT_EQ(loadError(broken), "card picture " + broken + ": not an image OpenCV can read");
+}
+
+/// `png` (a real file) with the size in its IHDR replaced, its checksum fixed: a "header bomb".
+std::string withClaimedSize(const std::string& png, std::uint32_t width, std::uint32_t height)
+{
+    std::ifstream in(png, std::ios::binary);
+    std::string bytes((std::istreambuf_iterator<char>(in)), {});
+    const auto put = [&](std::size_t at, std::uint32_t v) {
+        for (int i = 0; i < 4; ++i)
+            bytes[at + static_cast<std::size_t>(i)] = static_cast<char>(v >> (24 - 8 * i));
+    };
+    put(16, width);
+    put(20, height);
+    std::uint32_t crc = 0xFFFFFFFFu;
+    for (std::size_t i = 12; i < 29; ++i) {
+        crc ^= static_cast<std::uint8_t>(bytes[i]);
+        for (int k = 0; k < 8; ++k)
+            crc = (crc >> 1) ^ (0xEDB88320u & (0u - (crc & 1u)));
+    }
+    put(29, ~crc);
+    return bytes;
+}
+
+TEST(ImageFile, APictureBeyondTheLimitsIsRefusedFromItsHeader)
+{
+    const std::string dir = testing_support::freshOutputDir("image_file_bomb");
+    const std::string small = dir + "/small.png";
+    ASSERT_TRUE(cv::imwrite(small, cv::Mat(8, 8, CV_8UC3, cv::Scalar(10, 20, 30))));
+    // 8000x8000 would be 192 MB decoded (and 3.9 GB through the pipeline): refused unread.
+    for (const auto& [w, h] : {std::pair{8000u, 8000u}, std::pair{7680u, 4321u}, std::pair{0u, 5u}}) {
+        const std::string bomb = dir + "/bomb.png";
+        std::ofstream(bomb, std::ios::binary) << withClaimedSize(small, w, h);
+        EXPECT_EQ(loadError(bomb), "card picture " + bomb + ": its header says " +
+                                       std::to_string(w) + "x" + std::to_string(h) +
+                                       " (allowed: up to 7680 on a side and 33177600 pixels, "
+                                       "7680x4320)");
+    }
+    // Either way up is fine.
+    const std::string portrait = dir + "/portrait.png";
+    ASSERT_TRUE(cv::imwrite(portrait, cv::Mat(7680, 16, CV_8UC3, cv::Scalar(1, 2, 3))));
+    EXPECT_EQ(platform::loadImageFile(portrait).view().height, 7680);
 }
 
 }  // namespace

@@ -20,9 +20,10 @@ inline constexpr std::size_t kTextureBytes = 16 * kMiB;     ///< a 2048x2048 PNG
 inline constexpr std::size_t kImageFileBytes = 64 * kMiB;   ///< a 7680x4320 PNG frame: ~50 MB
 
 // ---- images, in pixels, checked from the header before decoding ----------------------------
-/// A frame or a card picture: the largest capture size the config allows (8K UHD).
-inline constexpr int kMaxImageWidth = 7680;
-inline constexpr int kMaxImageHeight = 4320;
+/// A frame or a card picture: no larger than the largest capture the config allows (8K UHD,
+/// 7680x4320), either way up.
+inline constexpr int kMaxImageSide = 7680;
+inline constexpr long long kMaxImagePixels = 7680LL * 4320;
 /// An overlay texture: what every GLES2 GPU of the product's class samples (the Pi 4: 4096).
 inline constexpr int kMaxTextureSide = 4096;
 
