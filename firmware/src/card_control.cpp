@@ -79,12 +79,14 @@ void CardControl::reportTraining() noexcept
     const double f = trainFraction_;
     char* line = report_;
     const vision::CardTracker& tracker = stage_.tracker();
+    bool lost = false;  // trained but not kept: gone at the next start
     if (!stage_.lastTrainingSucceeded()) {
         std::snprintf(line, sizeof report_,
                       "card: training failed (no usable pixels in the centre)\n");
     } else {
         const vision::CardColorModel& m = tracker.trainedModel();
         const bool saved = store_ && store_->save(m);
+        lost = !saved;
         std::snprintf(
             line, sizeof report_,
             "card: trained on the central %.0f%% (r %.1f g %.1f b %.1f, sigma %.1f %.1f "
@@ -95,7 +97,11 @@ void CardControl::reportTraining() noexcept
             saved ? "saved to" : "NOT saved:",
             saved ? store_->path().c_str() : (store_ ? store_->lastError() : "no state folder"));
     }
-    MIRROR_LOG_INFO("%.*s", static_cast<int>(std::strlen(line)) - 1, line);
+    // A colour trained but not kept is lost at the next start: the technician must see it.
+    if (lost)
+        MIRROR_LOG_WARN("%.*s", static_cast<int>(std::strlen(line)) - 1, line);
+    else
+        MIRROR_LOG_INFO("%.*s", static_cast<int>(std::strlen(line)) - 1, line);
 }
 
 void CardControl::command(const Args& args, Reply& reply) noexcept

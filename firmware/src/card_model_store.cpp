@@ -42,10 +42,13 @@ std::optional<vision::CardColorModel> CardModelStore::load(std::string& warning)
         return std::nullopt;
     const toml::table& table = *parsed;
     vision::CardColorModel model;
+    // A sigma under 1 would make the colour test divide by (almost) zero; training floors it at
+    // the tracker's minimum sigma (8 by default), so only an edited or foreign file has one.
     if (!readTriple(table, "mean", model.mean, 0.f, 255.f) ||
-        !readTriple(table, "sigma", model.sigma, 0.f, 255.f)) {
-        warning =
-            path_ + ": not a card model (needs mean and sigma, 3 numbers 0..255 each); ignored";
+        !readTriple(table, "sigma", model.sigma, 1.f, 255.f)) {
+        warning = path_ +
+                  ": not a card model (needs mean, 3 numbers 0..255, and sigma, 3 numbers "
+                  "1..255); ignored";
         return std::nullopt;
     }
     model.valid = true;

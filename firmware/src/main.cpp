@@ -213,6 +213,11 @@ int main(int argc, char** argv)
     }
 
     firmware::setLogLevel(config.log.level);
+    // Under systemd the working directory is /: a relative folder is rarely what was meant.
+    if (!config.state.dir.empty() && config.state.dir.front() != '/')
+        MIRROR_LOG_WARN("state: state.dir \"%s\" is relative, so it is under the working "
+                        "directory; an installed mirror wants an absolute path",
+                        config.state.dir.c_str());
     std::signal(SIGPIPE, SIG_IGN);
     try {
         std::unique_ptr<platform::StdinConsole> console;

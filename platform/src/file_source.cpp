@@ -417,6 +417,12 @@ FileSource::FileSource(const std::string& path, bool loop, ReplayRate rate, doub
             break;
     }
 
+    // The first frame sizes the pipeline; the stages scale it down, so it needs some pixels.
+    if (first.cols < vision::limits::kMinFrameSide || first.rows < vision::limits::kMinFrameSide)
+        throw fileError(path, "frames of " + std::to_string(first.cols) + "x" +
+                                  std::to_string(first.rows) + " (allowed: at least " +
+                                  std::to_string(vision::limits::kMinFrameSide) + "x" +
+                                  std::to_string(vision::limits::kMinFrameSide) + ")");
     impl_ = std::make_unique<Impl>(fps, clock);
     Impl& m = *impl_;
     m.path = path;

@@ -52,7 +52,9 @@ TEST(CardModelStore, CorruptOrForeignFilesAreIgnoredWithAWarning)
     firmware::CardModelStore store(dir);
     const char* bad[] = {"mean = [1, 2\n", "mean = [1, 2, 3]\n",
                          "mean = [1, 2, 3]\nsigma = [1, 2, 999]\n", "\x89PNG\r\n\x1a\n",
-                         "mean = [nan, 1, 1]\nsigma = [1, 1, 1]\n"};
+                         "mean = [nan, 1, 1]\nsigma = [1, 1, 1]\n",
+                         "mean = [1, 2, 3]\nsigma = [0, 2, 2]\n",
+                         "mean = [1, 2, 3]\nsigma = [0.5, 2, 2]\n"};
     for (const char* text : bad) {
         std::ofstream(store.path(), std::ios::binary) << text;
         std::string warning;

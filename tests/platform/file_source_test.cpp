@@ -260,6 +260,10 @@ TEST(FileSource, AFrameWhoseHeaderClaimsAHugePictureIsSkippedUndecoded)
     ASSERT_EQ(source.next(frame), SourceStatus::Ok);
     EXPECT_EQ(source.next(frame), SourceStatus::EndOfStream);
     EXPECT_EQ(source.skippedFrames(), 2u);
+    // A frame too small to scale down is refused at start-up.
+    ASSERT_TRUE(cv::imwrite(dir + "/tiny.png", testImage(15, 40, 0)));
+    EXPECT_EQ(startupError(dir + "/tiny.png"),
+              "file:" + dir + "/tiny.png: frames of 15x40 (allowed: at least 16x16)");
     // Alone, it is one line saying why.
     EXPECT_EQ(startupError(dir + "/frame_0.bmp"),
               "file:" + dir + "/frame_0.bmp: its header says 60000x60000 (allowed: up to 7680 on a "

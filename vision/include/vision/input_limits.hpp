@@ -23,6 +23,8 @@ inline constexpr std::size_t kImageFileBytes = 64 * kMiB;   ///< a 7680x4320 PNG
 /// A frame or a card picture: no larger than the largest capture the config allows (8K UHD,
 /// 7680x4320), either way up.
 inline constexpr int kMaxImageSide = 7680;
+/// A frame: no smaller than the smallest capture the config allows (the stages scale it down).
+inline constexpr int kMinFrameSide = 16;
 inline constexpr long long kMaxImagePixels = 7680LL * 4320;
 /// An overlay texture: what every GLES2 GPU of the product's class samples (the Pi 4: 4096).
 inline constexpr int kMaxTextureSide = 4096;
