@@ -1,5 +1,6 @@
 #include "card_quad_fit.hpp"
 
+#include "card_shape_model.hpp"
 #include "vision/convex_hull.hpp"
 
 #include <algorithm>
@@ -33,9 +34,11 @@ void refineTwice(const ConstImageView& rgb, const Quad& seed, const CardTrackerO
     eo.normalsPerEdge = o.fineNormalsPerEdge;
     if (guide > 0.f)
         eo.maxSeedDistance = o.fineSearch + 1.f;  // the wide pass's lines are the guide now
+    // An edge the narrow pass does not confirm is not taken as fitted (a hand's outline within
+    // the wide walk), unless the narrow pass keeps too few edges to judge the quad by.
     EdgeRefinement fine;
     if (isConvexClockwise(fit.raw) && refineQuad(rgb, fit.raw, eo, fine) &&
-        fine.edgesFitted >= fit.refinement.edgesFitted) {
+        fine.edgesFitted >= std::min(fit.refinement.edgesFitted, 3)) {
         fit.raw = canonicalOrder(fine.quad);
         fit.refinement = fine;
     }
@@ -168,6 +171,8 @@ QuadFit fitQuad(const ConstImageView& rgb, const Quad& seed, const QuadJudge& ju
 {
     QuadFit f;
     refineTwice(rgb, seed, *judge.options, guide, f);
+    if (judge.measured && carryHiddenEdge(*judge.measured, judge.frame, f.refinement))
+        f.raw = canonicalOrder(f.refinement.quad);
     // Plausibility: the beyond-the-dissertation lost-track test.
     f.area = quadArea(f.raw);
     f.aspect = aspectOf(f.raw);

@@ -37,6 +37,9 @@ struct QuadJudge {
     bool haveGood = false;  ///< a quad seen whole before
     float goodArea = 0.f;   ///< its area and aspect
     float goodAspect = 1.f;
+    /// While tracking, the last quad measured on all four edges (null otherwise): an edge without
+    /// evidence moves with the card from there (carryHiddenEdge)
+    const Quad* measured = nullptr;
 };
 
 struct QuadFit {

@@ -26,6 +26,23 @@ int bestShift(const Quad& a, const Quad& b) noexcept
     return shift;
 }
 
+/// bestShift after moving b's centroid onto a's: the pairing survives a motion of more than half
+/// the card's size (a reference quad from many frames ago).
+int bestShiftCentred(const Quad& a, const Quad& b) noexcept
+{
+    float ax = 0.f, ay = 0.f, bx = 0.f, by = 0.f;
+    for (int i = 0; i < 4; ++i) {
+        ax += 0.25f * a[i].x;
+        ay += 0.25f * a[i].y;
+        bx += 0.25f * b[i].x;
+        by += 0.25f * b[i].y;
+    }
+    Quad moved;
+    for (int i = 0; i < 4; ++i)
+        moved[i] = {b[i].x + ax - bx, b[i].y + ay - by};
+    return bestShift(a, moved);
+}
+
 }  // namespace
 
 float quadDistance(const Quad& a, const Quad& b) noexcept
@@ -58,6 +75,10 @@ void CardShapeModel::track(const Quad& raw, float area, float aspect, unsigned m
             velocity_ = v;
             speed_ = fastest;
         }
+    }
+    if (measured) {
+        measured_ = raw;
+        haveMeasured_ = true;
     }
     last_ = raw;
     lastArea_ = area;
@@ -104,6 +125,69 @@ float CardShapeModel::edgeGuide(unsigned missed) const noexcept
 {
     const float k = static_cast<float>(missed + 1);
     return k * (6.f + 0.05f * std::sqrt(std::max(lastArea_, 1.f)) + 0.5f * speed_);
+}
+
+bool carryHiddenEdge(const Quad& reference, Size frame, EdgeRefinement& r) noexcept
+{
+    // Well inside the frame: 8 px from its border.
+    auto inView = [&frame](Point2f p) {
+        return p.x >= 8.f && p.y >= 8.f && p.x <= static_cast<float>(frame.width - 9) &&
+               p.y <= static_cast<float>(frame.height - 9);
+    };
+    if (r.edgesFitted != 3)
+        return false;
+    int k = 0;
+    while (r.fitted[k])
+        ++k;
+    // Corner i joins edges i - 1 and i; edge k runs from corner k to corner k + 1, so corners
+    // k + 2 and k + 3 are the measured ones.
+    Point2f a, b;
+    if (!intersectLines(r.lines[(k + 1) % 4], r.lines[(k + 2) % 4], a) ||
+        !intersectLines(r.lines[(k + 2) % 4], r.lines[(k + 3) % 4], b))
+        return false;
+    const int s = bestShiftCentred(r.quad, reference);  // r.quad[(i + s) % 4] is reference[i]
+    auto then = [&](int corner) { return reference[(corner - s + 8) % 4]; };
+    if (!inView(then(k)) || !inView(then((k + 1) % 4)))
+        return false;
+    // The similarity z -> m z + t taking the reference's two measured corners to a, b (as
+    // complex numbers). Anchored to a measured quad, never to a carried one: carried again, an
+    // edge drifts by each frame's error.
+    const Point2f ra = then((k + 2) % 4), rb = then((k + 3) % 4);
+    const float dx = rb.x - ra.x, dy = rb.y - ra.y, ex = b.x - a.x, ey = b.y - a.y;
+    const float den = dx * dx + dy * dy;
+    if (den < 1.f)
+        return false;
+    const float mr = (ex * dx + ey * dy) / den, mi = (ey * dx - ex * dy) / den;
+    const float scale = std::hypot(mr, mi);
+    if (!(scale > 0.8f && scale < 1.25f))
+        return false;
+    // A rigid motion in the image turns the fitted neighbours as it turns the measured edge; when
+    // they turn otherwise the card turned in depth, and the similarity would misplace the edge.
+    constexpr float kMaxTurnMismatch = 0.05f;  // sine of about 3 degrees
+    auto turnsWith = [&](int from, int to, const Line2f& fitted) {
+        const Point2f p = then(from), q = then(to);
+        const float ux = mr * (q.x - p.x) - mi * (q.y - p.y);
+        const float uy = mi * (q.x - p.x) + mr * (q.y - p.y);
+        const float len = std::hypot(ux, uy);
+        return len > 1.f && std::fabs(ux * fitted.nx + uy * fitted.ny) < kMaxTurnMismatch * len;
+    };
+    if (!turnsWith((k + 1) % 4, (k + 2) % 4, r.lines[(k + 1) % 4]) ||
+        !turnsWith((k + 3) % 4, k, r.lines[(k + 3) % 4]))
+        return false;
+    auto moved = [&](Point2f p) {
+        const float px = p.x - ra.x, py = p.y - ra.y;
+        return Point2f{a.x + mr * px - mi * py, a.y + mi * px + mr * py};
+    };
+    Line2f hidden;
+    Point2f p0, p1;
+    if (!lineThrough(moved(then(k)), moved(then((k + 1) % 4)), hidden) ||
+        !intersectLines(r.lines[(k + 3) % 4], hidden, p0) ||
+        !intersectLines(hidden, r.lines[(k + 1) % 4], p1) || !inView(p0) || !inView(p1))
+        return false;
+    r.lines[k] = hidden;
+    r.quad[k] = p0;
+    r.quad[(k + 1) % 4] = p1;
+    return true;
 }
 
 }  // namespace vision

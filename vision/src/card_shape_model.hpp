@@ -6,6 +6,7 @@
 // card's pieces), and the last quad seen whole, which a recovered quad must resemble. Private to
 // vision/src.
 
+#include "vision/edge_refinement.hpp"
 #include "vision/geometry.hpp"
 #include "vision/image.hpp"
 
@@ -23,6 +24,9 @@ public:
                bool measured) noexcept;
 
     bool haveLast() const noexcept { return haveLast_; }
+    /// The last quad with all four edges fitted to the image (null: none since the reset): the
+    /// card's measured shape that a hidden edge is carried from (carryHiddenEdge).
+    const Quad* lastMeasured() const noexcept { return haveMeasured_ ? &measured_ : nullptr; }
     float lastArea() const noexcept { return lastArea_; }
     /// Where the card is expected `missed` frames after the last tracked one: moving on as it
     /// last moved.
@@ -48,6 +52,8 @@ private:
     bool haveLast_ = false;
     bool lastMeasured_ = false;
     bool haveGood_ = false;
+    Quad measured_{};
+    bool haveMeasured_ = false;
     float goodArea_ = 0.f;
     float goodAspect_ = 1.f;
 };
@@ -55,5 +61,14 @@ private:
 /// Largest corner distance between two quads, their corners paired by the best cyclic shift (the
 /// top-left corner can change when the card turns through 45 degrees).
 float quadDistance(const Quad& a, const Quad& b) noexcept;
+
+/// An edge in view but without image evidence (under a hand) moves with the card: with exactly
+/// one edge of `r` not fitted, the two corners between its fitted edges and the same two corners
+/// of `reference` (the last quad measured on all four edges) give the card's motion since then as
+/// a similarity; the hidden edge is the reference's one moved by it, cut by its fitted neighbours.
+/// `r.lines` and `r.quad` are updated. False (r unchanged) when no edge or more than one is
+/// hidden, the motion is implausible, or the hidden edge is at or beyond the border of a frame of
+/// `frame` (then or now): an edge out of view is unknowable.
+bool carryHiddenEdge(const Quad& reference, Size frame, EdgeRefinement& r) noexcept;
 
 }  // namespace vision

@@ -151,12 +151,15 @@ QuadFit CardTracker::State::fitCard(const ConstImageView& rgb, const Quad* coars
     judge.haveGood = shape.haveGood();
     judge.goodArea = shape.goodArea();
     judge.goodAspect = shape.goodAspect();
+    judge.measured = tracking ? shape.lastMeasured() : nullptr;
     QuadFit best;
     if (coarse)
         best = fitQuad(rgb, *coarse, judge);
     if (!haveShape)
         return best;
-    if (coarse && !best.why && quadDistance(best.raw, predicted) <= shape.tolerance())
+    // An edge the colour's seed did not find may be found from where it is expected.
+    if (coarse && !best.why && best.refinement.edgesFitted == 4 &&
+        quadDistance(best.raw, predicted) <= shape.tolerance())
         return best;
     const QuadFit alt = fitQuad(rgb, predicted, judge, shape.edgeGuide(missed));
     return betterFit(alt, best) ? alt : best;

@@ -1,7 +1,13 @@
 #pragma once
 // CardTracker: the colour-card tracker (METHOD.md §2), plus what the dissertation lists as future
-// work: detecting a lost track and recovering from the trained colour and the last good shape,
+// work: detecting a lost track and recovering from the trained colour and the shape model,
 // sub-pixel corners and temporal smoothing.
+//
+// A search (no track) tests the whole frame against the trained colour and, for 5 s after the
+// card was last tracked, also against the colour it was tracked with then (the light it was lost
+// in); a recovered quad must resemble the last one seen whole. While tracking, the shape model
+// predicts the next quad: a second seed for step 5, where the card's pieces are, and an edge
+// hidden under a hand moves with the card from the last quad measured on all four edges.
 //
 // train() or setModel() gives it the card's colour; process() then runs steps 2-7 of §2 on every
 // frame and reports the card's corners (CardObservation), or lastProblem() says why it found none.
