@@ -1,0 +1,26 @@
+# Holds the systemd units at their hardening: `systemd-analyze security --offline=yes` exposure of
+# each at or below its bound (on its 0-10 scale; --threshold takes tenths). Skipped (exit 77)
+# where systemd-analyze is not installed. Run with -DUNIT_DIR=... -DANALYZE=...
+if(NOT EXISTS "${ANALYZE}")
+  message("systemd-analyze not found: skipped")
+  cmake_language(EXIT 77)
+endif()
+set(bounds "mirror.service=20" "mirror-console.service=30")
+set(failed "")
+foreach(pair ${bounds})
+  string(REPLACE "=" ";" parts "${pair}")
+  list(GET parts 0 unit)
+  list(GET parts 1 threshold)
+  execute_process(
+    COMMAND "${ANALYZE}" security --offline=yes --threshold=${threshold} "${UNIT_DIR}/${unit}"
+    RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  string(REGEX MATCH "Overall exposure level for [^\n]*" overall "${out}")
+  message(STATUS "${overall}")
+  if(NOT rc EQUAL 0)
+    list(APPEND failed "${unit}: ${overall}${err} (allowed: up to ${threshold} tenths)")
+  endif()
+endforeach()
+if(failed)
+  list(JOIN failed "\n" text)
+  message(FATAL_ERROR "systemd units less hardened than they must be:\n${text}")
+endif()
