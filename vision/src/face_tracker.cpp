@@ -117,6 +117,7 @@ struct FaceTracker::Impl {
     void startTrack(Rect box, float rollHint) noexcept;
     float initialRoll(Track& t, float rollHint) noexcept;
     bool keeps(Track& t) noexcept;
+    bool alone(const Track& t) const noexcept;
     void drop(int index) noexcept;
     std::span<const Track> live() const noexcept
     {
@@ -381,7 +382,7 @@ bool FaceTracker::Impl::keeps(Track& t) noexcept
             ++t.face.misses;
         }
     }
-    const StaticFaceRule::Verdict still = staticRule.observe(t.motion, t.face, seen);
+    const StaticFaceRule::Verdict still = staticRule.observe(t.motion, t.face, seen, alone(t));
     bool keep = true;
     if (t.face.state == FaceState::Tentative) {
         if (!seen)
@@ -408,6 +409,21 @@ bool FaceTracker::Impl::keeps(Track& t) noexcept
         std::min(1.f, static_cast<float>(t.face.hits) / static_cast<float>(options.confirmFrames));
     t.face.confidence = seen ? std::max(record * t.face.confidence, record * 0.5f) : 0.f;
     return keep;
+}
+
+bool FaceTracker::Impl::alone(const Track& t) const noexcept
+{
+    // No other track's box overlaps this one's.
+    const Rect b = t.face.box();
+    for (const Track& o : live()) {
+        if (&o == &t)
+            continue;
+        const Rect a = o.face.box();
+        if (a.x < b.x + b.width && b.x < a.x + a.width && a.y < b.y + b.height &&
+            b.y < a.y + a.height)
+            return false;
+    }
+    return true;
 }
 
 void FaceTracker::Impl::drop(int index) noexcept

@@ -131,7 +131,10 @@ bool StaticFaceRule::turnedInImage(FaceMotion& m, const TrackedFace& face) noexc
     // A face turning about its own centre (a head tilting from side to side) hardly moves its
     // centre, so `path` misses it. Its tracked roll does turn, but corners near a face moving past
     // a still one can turn that one's fit too (the edge of the passer-by uncovers and covers it):
-    // the turn counts only when the image's symmetry, measured afresh, turned the same way.
+    // the turn counts only when the image's symmetry, measured afresh, turned the same way, and
+    // only while no other face is in its box (observe()): the symmetry of a box that holds part
+    // of a passer-by turns with the passer-by (facegen seed 23's `one`: a photo below a head
+    // passing over it was shown for 23 frames).
     if (!imageRoll_ || !m.haveImageRollAtStart || options_.mode == FaceTrackingMode::Translation)
         return false;
     if (std::fabs(m.turn) < std::fabs(m.rollChecked) + kTurnCheckDegrees)
@@ -144,8 +147,8 @@ bool StaticFaceRule::turnedInImage(FaceMotion& m, const TrackedFace& face) noexc
     return seen * m.turn > 0.f && std::fabs(seen) >= 0.5f * kTurnCheckDegrees;
 }
 
-StaticFaceRule::Verdict StaticFaceRule::observe(FaceMotion& m, const TrackedFace& face,
-                                                bool seen) noexcept
+StaticFaceRule::Verdict StaticFaceRule::observe(FaceMotion& m, const TrackedFace& face, bool seen,
+                                                bool alone) noexcept
 {
     // Detector only: the first frames of a track settle its box (detections move it a few
     // pixels): they are no evidence either way. Tracking measures the motion of the face's
@@ -168,7 +171,8 @@ StaticFaceRule::Verdict StaticFaceRule::observe(FaceMotion& m, const TrackedFace
     const bool sways = options_.livenessBySway && LivenessCue::swayed(m.sway);
     if (m.path - m.anchor > step || sways ||
         (maskCounts && motionFraction(face.box()) >= options_.minFaceMotionFraction) ||
-        (haveMotion && face.state == FaceState::Tentative && seen && turnedInImage(m, face))) {
+        (haveMotion && face.state == FaceState::Tentative && seen && alone &&
+         turnedInImage(m, face))) {
         m.lastMotionFrame = frame_;
         m.anchor = m.path;
     }

@@ -74,8 +74,8 @@ public:
         bool movedLately;
     };
     /// Step 5, before the track's state is decided: `seen` is this frame's detection or
-    /// verification.
-    Verdict observe(FaceMotion& m, const TrackedFace& face, bool seen) noexcept;
+    /// verification; `alone`: no other track's box overlaps the face's.
+    Verdict observe(FaceMotion& m, const TrackedFace& face, bool seen, bool alone) noexcept;
     /// Step 5, after: false when the face is to be dropped for never moving.
     bool keeps(const Verdict& v, const TrackedFace& face) const noexcept;
 
