@@ -83,10 +83,14 @@ GeneratedSequence generateSequence(const GenerateOptions& o)
     result.staticFaces = static_cast<int>(background.faces.size());
     const std::vector<int> pngParams = {cv::IMWRITE_PNG_COMPRESSION, 1};
     for (int i = 0; i < o.frames; ++i) {
-        const std::vector<FaceState> faces = scenario.frame(i);
+        const std::vector<FaceState> scene = scenario.frame(i);
         const double u = o.frames > 1 ? static_cast<double>(i) / (o.frames - 1) : 0.0;
-        const cv::Mat frame = renderFrame(background, sprites, faces, lightingAt(o.seed, u),
-                                          static_cast<std::uint64_t>(o.seed) * 100003u + i);
+        const CameraShake shake = shakeAt(o.seed, i, o.shakePx);
+        const cv::Mat frame = renderFrame(background, sprites, scene, lightingAt(o.seed, u),
+                                          static_cast<std::uint64_t>(o.seed) * 100003u + i, shake);
+        std::vector<FaceState> faces;
+        for (const FaceState& f : scene)
+            faces.push_back(shaken(f, shake, o.size));
         const std::string png = (framesDir / numbered(i, "png")).string();
         if (!cv::imwrite(png, frame, pngParams))
             throw std::runtime_error("output " + png + ": cannot write PNG");
@@ -132,6 +136,8 @@ GeneratedSequence generateSequence(const GenerateOptions& o)
          << "lighting: global gain 1 +- 0.06 and a left-right gradient +- 0.05, drifting; sensor "
             "noise Gaussian sigma "
          << kNoiseSigma << " grey levels per channel\n"
+         << "camera shake: " << o.shakePx << " px amplitude, +-" << kShakeRollPerPixel * o.shakePx
+         << " degrees (the whole view; truth in the shaken frame)\n"
          << "\n"
          << "frames/NNNNNN.png: BGR PNG. truth/NNNNNN.txt: one line per face in that frame:\n"
          << "  id cx cy size roll_deg moving\n"

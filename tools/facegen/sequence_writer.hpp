@@ -19,6 +19,7 @@ struct GenerateOptions {
     std::string dataDir = "../shared/data";  ///< the shared real data (relative to the cwd)
     std::string cascadePath;                 ///< empty: Debian's haarcascade_frontalface_default
     std::string background;                  ///< overrides the scenario's photograph when set
+    double shakePx = 0;  ///< camera shake amplitude (camera_shake.hpp); 0: a still camera
 };
 
 struct GeneratedSequence {
