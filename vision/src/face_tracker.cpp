@@ -196,7 +196,10 @@ void FaceTracker::Impl::beginFrame(const ConstImageView& gray, const ConstImageV
         else
             motionIntegral.compute(mask);
     }
-    staticRule.beginFrame(image(), motion, frameIndex);
+    if (options.mode != FaceTrackingMode::None)
+        cornerFlow.followBackground(live());
+    staticRule.beginFrame(image(), motion, frameIndex,
+                          cornerFlow.background().largestDisplacement());
 }
 
 void FaceTracker::Impl::updateFacePoses() noexcept

@@ -47,12 +47,14 @@ StaticFaceRule::StaticFaceRule(const FaceTrackerOptions& options,
 {
 }
 
-void StaticFaceRule::beginFrame(const ConstImageView& gray, const IntegralImage* motion,
-                                int frame) noexcept
+void StaticFaceRule::beginFrame(const ConstImageView& gray, const IntegralImage* motion, int frame,
+                                float viewMoved) noexcept
 {
     gray_ = gray;
     motion_ = motion;
     frame_ = frame;
+    if (viewMoved > kStillShift)
+        viewMovedFrame_ = frame;
 }
 
 float StaticFaceRule::motionFraction(Rect box) const noexcept
@@ -95,7 +97,11 @@ void StaticFaceRule::addFlowStep(FaceMotion& m, const FlowStep& step) noexcept
         m.path += step.shift;
     if (options_.mode != FaceTrackingMode::Translation && asOne)
         m.turn += toDegrees(step.model.roll());
-    liveness_.addFlowStep(m.sway, step.from, step.to, step.inliers, step.model);
+    // A sway is a fraction of a pixel: against a view the camera moved by more, measured to a
+    // few hundredths at best, it cannot be told (a print's own flow then sways as much as a calm
+    // head's, by the errors of the view's motion). Such steps say nothing about liveness.
+    if (frame_ != viewMovedFrame_)
+        liveness_.addFlowStep(m.sway, step.from, step.to, step.inliers, step.model);
 }
 
 bool StaticFaceRule::movedAsOne(const FlowStep& step) noexcept
@@ -165,8 +171,12 @@ StaticFaceRule::Verdict StaticFaceRule::observe(FaceMotion& m, const TrackedFace
         m.anchor = m.path;
     const bool haveMotion = motion_ != nullptr;
     const float step = std::max(1.0f, options_.minFaceMoveFraction * face.size);
+    // The mixture of Gaussians takes a still camera (METHOD.md §3, "Motion"): once the camera
+    // moved the view, every edge is foreground until the mixture has learnt the view again, a
+    // print's box as much as a head's.
     const bool maskCounts =
         !(m.tiltFound && face.state == FaceState::Tentative) &&
+        frame_ - viewMovedFrame_ > options_.confirmMotionFrames &&
         (options_.mode == FaceTrackingMode::None || LivenessCue::stirred(m.sway));
     const bool sways = options_.livenessBySway && LivenessCue::swayed(m.sway);
     if (m.path - m.anchor > step || sways ||

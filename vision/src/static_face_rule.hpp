@@ -3,7 +3,8 @@
 // dissertation's rule that static regions are not faces (METHOD.md §3, "Detection"; 5.1.3),
 // taken from the search mask to the tracks. A face shows it moves by its corners carrying its
 // centre away as one, by a box full of motion, by turning in place as its image agrees, or (a
-// person standing still) by its corners swaying together as only a living face's do (LivenessCue).
+// person standing still) by its corners swaying together as only a living face's do (LivenessCue),
+// all measured against the background: a print moves with it when the camera shakes.
 // Private to vision/src.
 //
 // Use: each track keeps a FaceMotion. Per frame: beginFrame(); start() for a new track;
@@ -48,8 +49,10 @@ public:
     StaticFaceRule(const FaceTrackerOptions& options, RollByImageSymmetry* imageRoll) noexcept;
 
     /// This frame: the working image, the motion mask's integral image (null: no mask, and then
-    /// no face needs to move), the frame's index.
-    void beginFrame(const ConstImageView& gray, const IntegralImage* motion, int frame) noexcept;
+    /// no face needs to move), the frame's index, and how far the camera moved the view since
+    /// the last frame (BackgroundMotion::largestDisplacement()).
+    void beginFrame(const ConstImageView& gray, const IntegralImage* motion, int frame,
+                    float viewMoved) noexcept;
     /// A new track found at `box` (by a tilted scan: `tiltFound`). True when it counts as
     /// moving already (its box full of motion).
     bool start(FaceMotion& m, Rect box, bool tiltFound) const noexcept;
@@ -90,6 +93,7 @@ private:
     ConstImageView gray_{};
     const IntegralImage* motion_ = nullptr;
     int frame_ = 0;
+    int viewMovedFrame_ = -1000000;  ///< the last frame the camera moved the view
 };
 
 }  // namespace vision
