@@ -148,6 +148,7 @@ void CornerFlow::tellRule(Track& t, StaticFaceRule& rule, const MotionModel& mod
     if (background_.known())
         fitMotionLeastSquares(from_.data(), ownTo_.data(), pairs, inliers_.data(), t.face.centre,
                               model.kind, own);
+    const Point2f view = background_.displacement(t.face.centre);
     const Point2f moved = own.apply(t.face.centre);
     const float shift = std::hypot(moved.x - t.face.centre.x, moved.y - t.face.centre.y);
     const auto n = static_cast<std::size_t>(pairs);
@@ -157,7 +158,8 @@ void CornerFlow::tellRule(Track& t, StaticFaceRule& rule, const MotionModel& mod
                                 own,
                                 t.face.age,
                                 survived,
-                                shift});
+                                shift,
+                                std::hypot(view.x, view.y)});
 }
 
 void CornerFlow::move(Track& t, const MotionModel& model, int pairs) noexcept

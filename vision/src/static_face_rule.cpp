@@ -35,6 +35,9 @@ constexpr float kCoherentFraction = 0.85f;
 /// Fraction of a track's corners that must each move along its shift (by half of it at least)
 /// for the shift to count as the face moving.
 constexpr float kMovedAsOneFraction = 0.75f;
+/// The fraction of the view's motion (BackgroundMotion) that a face's own shift may be in error
+/// by far from the corners that measured it (facegen --shake 3: up to about a quarter).
+constexpr float kViewError = 0.5f;
 /// A Tentative face whose tracked roll turned this far since it started is checked for turning
 /// in the image (and again after each further step as far).
 constexpr float kTurnCheckDegrees = 4.f;
@@ -93,7 +96,9 @@ void StaticFaceRule::addFlowStep(FaceMotion& m, const FlowStep& step) noexcept
     // of its corners agree with them.
     const bool coherent = step.age >= kSettleFrames || step.survived >= kCoherentFraction;
     const bool asOne = coherent && movedAsOne(step);
-    if (step.shift > kStillShift && asOne)
+    // The view's motion is known to a fraction of itself: a shift within that fraction of it is
+    // the error of the view's motion (a print beside a shaking view), not the face's own.
+    if (step.shift > kStillShift + kViewError * step.viewShift && asOne)
         m.path += step.shift;
     if (options_.mode != FaceTrackingMode::Translation && asOne)
         m.turn += toDegrees(step.model.roll());

@@ -59,7 +59,7 @@ public:
 
     /// One flow step of a track: the corner pairs the motion fit saw (`inliers` marks its
     /// inliers), the fit, the track's age, the fraction of its corners that survived and the
-    /// shift of its centre.
+    /// shift of its centre (all less the view's motion), and the view's shift at the face.
     struct FlowStep {
         std::span<const Point2f> from, to;
         std::span<const std::uint8_t> inliers;
@@ -67,6 +67,7 @@ public:
         int age;
         float survived;
         float shift;
+        float viewShift;  ///< how far the camera moved the view at the face (BackgroundMotion)
     };
     void addFlowStep(FaceMotion& m, const FlowStep& step) noexcept;
 
