@@ -32,6 +32,9 @@ namespace vision {
 
 namespace {
 
+/// A detection re-anchors the track it matches only when they share this much (IoU).
+constexpr float kReanchorIou = 0.5f;
+
 Point2f centreOf(Rect box) noexcept
 {
     return {static_cast<float>(box.x) + static_cast<float>(box.width) * 0.5f,
@@ -293,7 +296,12 @@ void FaceTracker::Impl::match(Rect box, float rollHint) noexcept
     if (t.detectedThisFrame)
         return;
     t.detectedThisFrame = true;
-    // A detection re-anchors position and size (tracking drifts, detections do not).
+    // A detection re-anchors position and size (tracking drifts, detections do not), if it
+    // shares half with the track, as TrackVerifier's re-anchoring does: the corners hold a face
+    // to within a few percent of its size, and a box that shares less is a grouping beside it
+    // (facegen seed 5's `three`: one 54 px to the left took a track off its face for 155 frames).
+    if (bestIou < kReanchorIou)
+        return;
     t.face.centre = centreOf(box);
     t.face.size = static_cast<float>(std::max(box.width, box.height));
     if (options.mode != FaceTrackingMode::None && t.pointCount < options.minCornersPerFace)
