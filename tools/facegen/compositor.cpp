@@ -235,12 +235,14 @@ Lighting lightingAt(std::uint32_t seed, double u) noexcept
 
 cv::Mat renderFrame(const Background& background, const std::vector<FaceSprite>& sprites,
                     const std::vector<FaceState>& faces, const Lighting& light,
-                    std::uint64_t noiseSeed)
+                    std::uint64_t noiseSeed, const CameraShake& shake)
 {
     cv::Mat frame = background.image.clone();
     for (const FaceState& f : faces)
         if (f.moving)
             sprites.at(static_cast<std::size_t>(f.id - 1)).draw(frame, f);
+    // The camera moves, the scene's light and the sensor's noise do not move with it.
+    applyShake(frame, shake);
 
     std::vector<float> gain(static_cast<std::size_t>(frame.cols));
     for (int x = 0; x < frame.cols; ++x)

@@ -3,6 +3,7 @@
 // OpenCV's cascade), heads cut from IMM photographs drawn over it by a similarity transform, then
 // scene lighting and sensor noise.
 
+#include "camera_shake.hpp"
 #include "face_photo.hpp"
 #include "scenarios.hpp"
 
@@ -60,9 +61,10 @@ Lighting lightingAt(std::uint32_t seed, double u) noexcept;
 inline constexpr double kNoiseSigma = 2.0;  ///< grey levels, Gaussian, per channel
 
 /// The whole frame as 8-bit BGR: moving face `id` is drawn with sprites[id - 1], in the order of
-/// `faces`. `noiseSeed` makes the sensor noise repeatable.
+/// `faces` (scene coordinates), the view then moved by `shake`. `noiseSeed` makes the sensor
+/// noise repeatable.
 cv::Mat renderFrame(const Background& background, const std::vector<FaceSprite>& sprites,
                     const std::vector<FaceState>& faces, const Lighting& light,
-                    std::uint64_t noiseSeed);
+                    std::uint64_t noiseSeed, const CameraShake& shake = {});
 
 }  // namespace facegen

@@ -76,6 +76,10 @@ int main(int argc, char** argv)
     app.add_option("--cascade", base.cascadePath, "OpenCV cascade for static faces and checks")
         ->capture_default_str();
     app.add_option("--background", base.background, "use this photograph as background instead");
+    app.add_option("--shake", base.shakePx,
+                   "camera shake: the whole view shifted by up to this many pixels and turned "
+                   "by 0.15 degrees a pixel, each frame (0: a still camera)")
+        ->check(CLI::Range(0.0, 20.0));
     app.add_option("--check", checkDir,
                    "run OpenCV's cascade over a written sequence and count the faces it finds");
     app.add_option("--check-step", checkStep, "with --check: every n-th frame")

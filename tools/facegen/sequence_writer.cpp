@@ -53,23 +53,88 @@ std::string truthLine(const FaceState& f)
     return line;
 }
 
+struct SequenceRenderer::Impl {
+    static std::string backgroundOf(const GenerateOptions& o)
+    {
+        const ScenarioInfo* info = findScenario(o.scenario);
+        if (info == nullptr)
+            (void)Scenario(o.scenario, o.size, o.frames, o.seed, {}, {});  // throws the names
+        return o.background.empty() ? (fs::path(o.dataDir) / info->background).string()
+                                    : o.background;
+    }
+
+    explicit Impl(const GenerateOptions& o)
+        : options(o),
+          bgPath(backgroundOf(o)),
+          background(loadBackground(bgPath, o.size,
+                                    o.cascadePath.empty() ? kDefaultCascade : o.cascadePath)),
+          sources(frontalImmFaces((fs::path(o.dataDir) / "imm_face_db").string())),
+          scenario(o.scenario, o.size, o.frames, o.seed, sources, background.faces)
+    {
+        for (const FacePath& p : scenario.paths())
+            sprites.emplace_back(loadImmFace(sources[p.source]));
+    }
+
+    GenerateOptions options;
+    std::string bgPath;
+    Background background;
+    std::vector<std::string> sources;
+    Scenario scenario;
+    std::vector<FaceSprite> sprites;
+};
+
+SequenceRenderer::SequenceRenderer(const GenerateOptions& options)
+    : impl_(std::make_unique<Impl>(options))
+{
+}
+
+SequenceRenderer::~SequenceRenderer() = default;
+
+SequenceRenderer::Frame SequenceRenderer::frame(int i) const
+{
+    const GenerateOptions& o = impl_->options;
+    const std::vector<FaceState> scene = impl_->scenario.frame(i);
+    const double u = o.frames > 1 ? static_cast<double>(i) / (o.frames - 1) : 0.0;
+    const CameraShake shake = shakeAt(o.seed, i, o.shakePx);
+    Frame f;
+    f.bgr = renderFrame(impl_->background, impl_->sprites, scene, lightingAt(o.seed, u),
+                        static_cast<std::uint64_t>(o.seed) * 100003u + i, shake);
+    for (const FaceState& s : scene)
+        f.faces.push_back(shaken(s, shake, o.size));
+    return f;
+}
+
+const std::string& SequenceRenderer::backgroundPath() const noexcept
+{
+    return impl_->bgPath;
+}
+const Scenario& SequenceRenderer::scenario() const noexcept
+{
+    return impl_->scenario;
+}
+const std::vector<FaceState>& SequenceRenderer::staticFaces() const noexcept
+{
+    return impl_->background.faces;
+}
+const std::vector<std::string>& SequenceRenderer::staticOrigins() const noexcept
+{
+    return impl_->background.origins;
+}
+const std::vector<std::string>& SequenceRenderer::faceSources() const noexcept
+{
+    return impl_->sources;
+}
+
 GeneratedSequence generateSequence(const GenerateOptions& o)
 {
     // One thread: the cascade's static faces, and so the truth, must not depend on scheduling.
     cv::setNumThreads(1);
+    const SequenceRenderer renderer(o);
     const ScenarioInfo* info = findScenario(o.scenario);
-    if (info == nullptr)
-        (void)Scenario(o.scenario, o.size, o.frames, o.seed, {}, {});  // throws the known names
-    const std::string cascadePath = o.cascadePath.empty() ? kDefaultCascade : o.cascadePath;
-    const std::string bgPath =
-        o.background.empty() ? (fs::path(o.dataDir) / info->background).string() : o.background;
-    const Background background = loadBackground(bgPath, o.size, cascadePath);
-    const std::vector<std::string> sources =
-        frontalImmFaces((fs::path(o.dataDir) / "imm_face_db").string());
-    const Scenario scenario(o.scenario, o.size, o.frames, o.seed, sources, background.faces);
-    std::vector<FaceSprite> sprites;
-    for (const FacePath& p : scenario.paths())
-        sprites.emplace_back(loadImmFace(sources[p.source]));
+    const std::string& bgPath = renderer.backgroundPath();
+    const Scenario& scenario = renderer.scenario();
+    const std::vector<std::string>& sources = renderer.faceSources();
+    const std::vector<FaceState>& staticFaces = renderer.staticFaces();
 
     const fs::path framesDir = fs::path(o.outDir) / "frames";
     const fs::path truthDir = fs::path(o.outDir) / "truth";
@@ -80,13 +145,12 @@ GeneratedSequence generateSequence(const GenerateOptions& o)
     result.dir = o.outDir;
     result.background = bgPath;
     result.movingFaces = static_cast<int>(scenario.paths().size());
-    result.staticFaces = static_cast<int>(background.faces.size());
+    result.staticFaces = static_cast<int>(staticFaces.size());
     const std::vector<int> pngParams = {cv::IMWRITE_PNG_COMPRESSION, 1};
     for (int i = 0; i < o.frames; ++i) {
-        const std::vector<FaceState> faces = scenario.frame(i);
-        const double u = o.frames > 1 ? static_cast<double>(i) / (o.frames - 1) : 0.0;
-        const cv::Mat frame = renderFrame(background, sprites, faces, lightingAt(o.seed, u),
-                                          static_cast<std::uint64_t>(o.seed) * 100003u + i);
+        const SequenceRenderer::Frame rendered = renderer.frame(i);
+        const cv::Mat& frame = rendered.bgr;
+        const std::vector<FaceState>& faces = rendered.faces;
         const std::string png = (framesDir / numbered(i, "png")).string();
         if (!cv::imwrite(png, frame, pngParams))
             throw std::runtime_error("output " + png + ": cannot write PNG");
@@ -111,11 +175,11 @@ GeneratedSequence generateSequence(const GenerateOptions& o)
          << "size: " << o.size.width << "x" << o.size.height << "\n"
          << "seed: " << o.seed << "\n"
          << "background: " << bgPath << " (scaled to cover the frame, centre-cropped)\n"
-         << "static faces: " << background.faces.size() << " (found on the background by "
-         << cascadePath
+         << "static faces: " << staticFaces.size() << " (found on the background by "
+         << (o.cascadePath.empty() ? kDefaultCascade : o.cascadePath)
          << ", scale 1.1, 5 neighbours, plus annotated ones it misses; ids 101...)\n";
-    for (std::size_t i = 0; i < background.faces.size(); ++i)
-        text << "  " << truthLine(background.faces[i]) << "  (" << background.origins[i] << ")\n";
+    for (std::size_t i = 0; i < staticFaces.size(); ++i)
+        text << "  " << truthLine(staticFaces[i]) << "  (" << renderer.staticOrigins()[i] << ")\n";
     for (std::size_t i = 0; i < scenario.paths().size(); ++i) {
         const FacePath& p = scenario.paths()[i];
         char line[200];
@@ -132,6 +196,8 @@ GeneratedSequence generateSequence(const GenerateOptions& o)
          << "lighting: global gain 1 +- 0.06 and a left-right gradient +- 0.05, drifting; sensor "
             "noise Gaussian sigma "
          << kNoiseSigma << " grey levels per channel\n"
+         << "camera shake: " << o.shakePx << " px amplitude, +-" << kShakeRollPerPixel * o.shakePx
+         << " degrees (the whole view; truth in the shaken frame)\n"
          << "\n"
          << "frames/NNNNNN.png: BGR PNG. truth/NNNNNN.txt: one line per face in that frame:\n"
          << "  id cx cy size roll_deg moving\n"

@@ -5,8 +5,10 @@
 #include "scenarios.hpp"
 
 #include <cstdint>
+#include <memory>
 #include <opencv2/core.hpp>
 #include <string>
+#include <vector>
 
 namespace facegen {
 
@@ -19,6 +21,7 @@ struct GenerateOptions {
     std::string dataDir = "../shared/data";  ///< the shared real data (relative to the cwd)
     std::string cascadePath;                 ///< empty: Debian's haarcascade_frontalface_default
     std::string background;                  ///< overrides the scenario's photograph when set
+    double shakePx = 0;  ///< camera shake amplitude (camera_shake.hpp); 0: a still camera
 };
 
 struct GeneratedSequence {
@@ -28,6 +31,33 @@ struct GeneratedSequence {
     int movingFaces = 0;
     int staticFaces = 0;
     int framesWithoutMovingFace = 0;
+};
+
+/// Any frame of a sequence, rendered in memory as generateSequence() writes it (the scenario's
+/// timeline is that of `options.frames`; a test renders only the frames it needs).
+class SequenceRenderer {
+public:
+    /// Loads the background (its static faces found by the cascade) and the heads. Throws
+    /// std::runtime_error as generateSequence() does.
+    explicit SequenceRenderer(const GenerateOptions& options);
+    ~SequenceRenderer();
+
+    struct Frame {
+        cv::Mat bgr;                   ///< 8-bit BGR
+        std::vector<FaceState> faces;  ///< the truth, in the frame's (shaken) coordinates
+    };
+    Frame frame(int index) const;
+
+    const std::string& backgroundPath() const noexcept;
+    const Scenario& scenario() const noexcept;
+    /// The background's static faces (scene coordinates).
+    const std::vector<FaceState>& staticFaces() const noexcept;
+    const std::vector<std::string>& staticOrigins() const noexcept;
+    const std::vector<std::string>& faceSources() const noexcept;
+
+private:
+    struct Impl;
+    std::unique_ptr<Impl> impl_;
 };
 
 /// One truth line: "id cx cy size roll_deg moving" (2 decimals).

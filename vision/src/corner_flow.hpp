@@ -8,6 +8,7 @@
 // in new or re-anchored boxes; image() is this frame's grey copy.
 #include "face_track.hpp"
 #include "static_face_rule.hpp"
+#include "vision/background_motion.hpp"
 #include "vision/corner_detector.hpp"
 #include "vision/face_tracker.hpp"
 #include "vision/image.hpp"
@@ -16,6 +17,7 @@
 
 #include <array>
 #include <cstdint>
+#include <span>
 
 namespace vision {
 
@@ -31,8 +33,12 @@ public:
     bool hasPrevious() const noexcept { return hasPrevious_; }
     ConstImageView image() const noexcept { return grays_[current_].view(); }
 
+    /// Measures how the view moved since the last frame (BackgroundMotion), away from the
+    /// `tracks`' faces; once a frame, before follow().
+    void followBackground(std::span<const Track> tracks) noexcept;
+    const BackgroundMotion& background() const noexcept { return background_; }
     /// Moves `t` by its corners' flow from the last frame (position, and with roll: scale and
-    /// roll); keeps the corners that fit; tells `rule` how the face moved.
+    /// roll); keeps the corners that fit; tells `rule` how the face moved against the view.
     void follow(Track& t, StaticFaceRule& rule) noexcept;
     /// Finds corners in `t`'s box, added to those it has (`replenish`) or instead of them.
     void find(Track& t, bool replenish) noexcept;
@@ -41,6 +47,8 @@ public:
 
 private:
     void move(Track& t, const MotionModel& model, int pairs) noexcept;
+    void tellRule(Track& t, StaticFaceRule& rule, const MotionModel& model, int pairs,
+                  float survived) noexcept;
 
     FaceTrackerOptions options_;
     CornerDetector corners_;
@@ -57,6 +65,9 @@ private:
     std::array<Point2f, kMaxPoints> to_{};
     std::array<std::uint8_t, kMaxPoints> inliers_{};
     std::array<Corner, kMaxPoints> found_{};
+    BackgroundMotion background_;
+    std::array<Rect, kMaxTracks> faces_{};     ///< followBackground()'s scratch
+    std::array<Point2f, kMaxPoints> ownTo_{};  ///< to_ less the view's motion
 };
 
 }  // namespace vision

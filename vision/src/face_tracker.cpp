@@ -32,6 +32,9 @@ namespace vision {
 
 namespace {
 
+/// A detection re-anchors the track it matches only when they share this much (IoU).
+constexpr float kReanchorIou = 0.5f;
+
 Point2f centreOf(Rect box) noexcept
 {
     return {static_cast<float>(box.x) + static_cast<float>(box.width) * 0.5f,
@@ -117,6 +120,7 @@ struct FaceTracker::Impl {
     void startTrack(Rect box, float rollHint) noexcept;
     float initialRoll(Track& t, float rollHint) noexcept;
     bool keeps(Track& t) noexcept;
+    bool alone(const Track& t) const noexcept;
     void drop(int index) noexcept;
     std::span<const Track> live() const noexcept
     {
@@ -195,7 +199,10 @@ void FaceTracker::Impl::beginFrame(const ConstImageView& gray, const ConstImageV
         else
             motionIntegral.compute(mask);
     }
-    staticRule.beginFrame(image(), motion, frameIndex);
+    if (options.mode != FaceTrackingMode::None)
+        cornerFlow.followBackground(live());
+    staticRule.beginFrame(image(), motion, frameIndex,
+                          cornerFlow.background().largestDisplacement());
 }
 
 void FaceTracker::Impl::updateFacePoses() noexcept
@@ -289,7 +296,12 @@ void FaceTracker::Impl::match(Rect box, float rollHint) noexcept
     if (t.detectedThisFrame)
         return;
     t.detectedThisFrame = true;
-    // A detection re-anchors position and size (tracking drifts, detections do not).
+    // A detection re-anchors position and size (tracking drifts, detections do not), if it
+    // shares half with the track, as TrackVerifier's re-anchoring does: the corners hold a face
+    // to within a few percent of its size, and a box that shares less is a grouping beside it
+    // (facegen seed 5's `three`: one 54 px to the left took a track off its face for 155 frames).
+    if (bestIou < kReanchorIou)
+        return;
     t.face.centre = centreOf(box);
     t.face.size = static_cast<float>(std::max(box.width, box.height));
     if (options.mode != FaceTrackingMode::None && t.pointCount < options.minCornersPerFace)
@@ -381,7 +393,7 @@ bool FaceTracker::Impl::keeps(Track& t) noexcept
             ++t.face.misses;
         }
     }
-    const StaticFaceRule::Verdict still = staticRule.observe(t.motion, t.face, seen);
+    const StaticFaceRule::Verdict still = staticRule.observe(t.motion, t.face, seen, alone(t));
     bool keep = true;
     if (t.face.state == FaceState::Tentative) {
         if (!seen)
@@ -408,6 +420,21 @@ bool FaceTracker::Impl::keeps(Track& t) noexcept
         std::min(1.f, static_cast<float>(t.face.hits) / static_cast<float>(options.confirmFrames));
     t.face.confidence = seen ? std::max(record * t.face.confidence, record * 0.5f) : 0.f;
     return keep;
+}
+
+bool FaceTracker::Impl::alone(const Track& t) const noexcept
+{
+    // No other track's box overlaps this one's.
+    const Rect b = t.face.box();
+    for (const Track& o : live()) {
+        if (&o == &t)
+            continue;
+        const Rect a = o.face.box();
+        if (a.x < b.x + b.width && b.x < a.x + a.width && a.y < b.y + b.height &&
+            b.y < a.y + a.height)
+            return false;
+    }
+    return true;
 }
 
 void FaceTracker::Impl::drop(int index) noexcept

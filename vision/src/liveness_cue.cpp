@@ -20,7 +20,9 @@
 // With the thresholds below, FGNet's windows swayed within 1 step in 75% of the windows, 2 in
 // 86%, 3 in 91%, 6 in 98% and 12 in 100% (the 360x288 copy: 70%, 83%, 88%, 96%, 99.6%); no
 // print's window did. At 0.7 of their values, 3 of the 2975 windows of the noisiest print did.
-// Not told apart: a print on a camera that shakes moves all its corners as one, as a head does.
+// A print on a camera that shakes moves all its corners as one, as a head does: the tracker gives
+// the cue a face's flow less the view's (BackgroundMotion), and no step of a frame in which the
+// camera moved the view by more than a quarter pixel (StaticFaceRule::addFlowStep).
 
 namespace vision {
 

@@ -35,6 +35,9 @@ constexpr float kCoherentFraction = 0.85f;
 /// Fraction of a track's corners that must each move along its shift (by half of it at least)
 /// for the shift to count as the face moving.
 constexpr float kMovedAsOneFraction = 0.75f;
+/// The fraction of the view's motion (BackgroundMotion) that a face's own shift may be in error
+/// by far from the corners that measured it (facegen --shake 3: up to about a quarter).
+constexpr float kViewError = 0.5f;
 /// A Tentative face whose tracked roll turned this far since it started is checked for turning
 /// in the image (and again after each further step as far).
 constexpr float kTurnCheckDegrees = 4.f;
@@ -47,12 +50,14 @@ StaticFaceRule::StaticFaceRule(const FaceTrackerOptions& options,
 {
 }
 
-void StaticFaceRule::beginFrame(const ConstImageView& gray, const IntegralImage* motion,
-                                int frame) noexcept
+void StaticFaceRule::beginFrame(const ConstImageView& gray, const IntegralImage* motion, int frame,
+                                float viewMoved) noexcept
 {
     gray_ = gray;
     motion_ = motion;
     frame_ = frame;
+    if (viewMoved > kStillShift)
+        viewMovedFrame_ = frame;
 }
 
 float StaticFaceRule::motionFraction(Rect box) const noexcept
@@ -91,11 +96,17 @@ void StaticFaceRule::addFlowStep(FaceMotion& m, const FlowStep& step) noexcept
     // of its corners agree with them.
     const bool coherent = step.age >= kSettleFrames || step.survived >= kCoherentFraction;
     const bool asOne = coherent && movedAsOne(step);
-    if (step.shift > kStillShift && asOne)
+    // The view's motion is known to a fraction of itself: a shift within that fraction of it is
+    // the error of the view's motion (a print beside a shaking view), not the face's own.
+    if (step.shift > kStillShift + kViewError * step.viewShift && asOne)
         m.path += step.shift;
     if (options_.mode != FaceTrackingMode::Translation && asOne)
         m.turn += toDegrees(step.model.roll());
-    liveness_.addFlowStep(m.sway, step.from, step.to, step.inliers, step.model);
+    // A sway is a fraction of a pixel: against a view the camera moved by more, measured to a
+    // few hundredths at best, it cannot be told (a print's own flow then sways as much as a calm
+    // head's, by the errors of the view's motion). Such steps say nothing about liveness.
+    if (frame_ != viewMovedFrame_)
+        liveness_.addFlowStep(m.sway, step.from, step.to, step.inliers, step.model);
 }
 
 bool StaticFaceRule::movedAsOne(const FlowStep& step) noexcept
@@ -131,7 +142,10 @@ bool StaticFaceRule::turnedInImage(FaceMotion& m, const TrackedFace& face) noexc
     // A face turning about its own centre (a head tilting from side to side) hardly moves its
     // centre, so `path` misses it. Its tracked roll does turn, but corners near a face moving past
     // a still one can turn that one's fit too (the edge of the passer-by uncovers and covers it):
-    // the turn counts only when the image's symmetry, measured afresh, turned the same way.
+    // the turn counts only when the image's symmetry, measured afresh, turned the same way, and
+    // only while no other face is in its box (observe()): the symmetry of a box that holds part
+    // of a passer-by turns with the passer-by (facegen seed 23's `one`: a photo below a head
+    // passing over it was shown for 23 frames).
     if (!imageRoll_ || !m.haveImageRollAtStart || options_.mode == FaceTrackingMode::Translation)
         return false;
     if (std::fabs(m.turn) < std::fabs(m.rollChecked) + kTurnCheckDegrees)
@@ -144,8 +158,8 @@ bool StaticFaceRule::turnedInImage(FaceMotion& m, const TrackedFace& face) noexc
     return seen * m.turn > 0.f && std::fabs(seen) >= 0.5f * kTurnCheckDegrees;
 }
 
-StaticFaceRule::Verdict StaticFaceRule::observe(FaceMotion& m, const TrackedFace& face,
-                                                bool seen) noexcept
+StaticFaceRule::Verdict StaticFaceRule::observe(FaceMotion& m, const TrackedFace& face, bool seen,
+                                                bool alone) noexcept
 {
     // Detector only: the first frames of a track settle its box (detections move it a few
     // pixels): they are no evidence either way. Tracking measures the motion of the face's
@@ -162,13 +176,18 @@ StaticFaceRule::Verdict StaticFaceRule::observe(FaceMotion& m, const TrackedFace
         m.anchor = m.path;
     const bool haveMotion = motion_ != nullptr;
     const float step = std::max(1.0f, options_.minFaceMoveFraction * face.size);
+    // The mixture of Gaussians takes a still camera (METHOD.md §3, "Motion"): once the camera
+    // moved the view, every edge is foreground until the mixture has learnt the view again, a
+    // print's box as much as a head's.
     const bool maskCounts =
         !(m.tiltFound && face.state == FaceState::Tentative) &&
+        frame_ - viewMovedFrame_ > options_.confirmMotionFrames &&
         (options_.mode == FaceTrackingMode::None || LivenessCue::stirred(m.sway));
     const bool sways = options_.livenessBySway && LivenessCue::swayed(m.sway);
     if (m.path - m.anchor > step || sways ||
         (maskCounts && motionFraction(face.box()) >= options_.minFaceMotionFraction) ||
-        (haveMotion && face.state == FaceState::Tentative && seen && turnedInImage(m, face))) {
+        (haveMotion && face.state == FaceState::Tentative && seen && alone &&
+         turnedInImage(m, face))) {
         m.lastMotionFrame = frame_;
         m.anchor = m.path;
     }

@@ -3,7 +3,8 @@
 // dissertation's rule that static regions are not faces (METHOD.md §3, "Detection"; 5.1.3),
 // taken from the search mask to the tracks. A face shows it moves by its corners carrying its
 // centre away as one, by a box full of motion, by turning in place as its image agrees, or (a
-// person standing still) by its corners swaying together as only a living face's do (LivenessCue).
+// person standing still) by its corners swaying together as only a living face's do (LivenessCue),
+// all measured against the background: a print moves with it when the camera shakes.
 // Private to vision/src.
 //
 // Use: each track keeps a FaceMotion. Per frame: beginFrame(); start() for a new track;
@@ -48,15 +49,17 @@ public:
     StaticFaceRule(const FaceTrackerOptions& options, RollByImageSymmetry* imageRoll) noexcept;
 
     /// This frame: the working image, the motion mask's integral image (null: no mask, and then
-    /// no face needs to move), the frame's index.
-    void beginFrame(const ConstImageView& gray, const IntegralImage* motion, int frame) noexcept;
+    /// no face needs to move), the frame's index, and how far the camera moved the view since
+    /// the last frame (BackgroundMotion::largestDisplacement()).
+    void beginFrame(const ConstImageView& gray, const IntegralImage* motion, int frame,
+                    float viewMoved) noexcept;
     /// A new track found at `box` (by a tilted scan: `tiltFound`). True when it counts as
     /// moving already (its box full of motion).
     bool start(FaceMotion& m, Rect box, bool tiltFound) const noexcept;
 
     /// One flow step of a track: the corner pairs the motion fit saw (`inliers` marks its
     /// inliers), the fit, the track's age, the fraction of its corners that survived and the
-    /// shift of its centre.
+    /// shift of its centre (all less the view's motion), and the view's shift at the face.
     struct FlowStep {
         std::span<const Point2f> from, to;
         std::span<const std::uint8_t> inliers;
@@ -64,6 +67,7 @@ public:
         int age;
         float survived;
         float shift;
+        float viewShift;  ///< how far the camera moved the view at the face (BackgroundMotion)
     };
     void addFlowStep(FaceMotion& m, const FlowStep& step) noexcept;
 
@@ -74,8 +78,8 @@ public:
         bool movedLately;
     };
     /// Step 5, before the track's state is decided: `seen` is this frame's detection or
-    /// verification.
-    Verdict observe(FaceMotion& m, const TrackedFace& face, bool seen) noexcept;
+    /// verification; `alone`: no other track's box overlaps the face's.
+    Verdict observe(FaceMotion& m, const TrackedFace& face, bool seen, bool alone) noexcept;
     /// Step 5, after: false when the face is to be dropped for never moving.
     bool keeps(const Verdict& v, const TrackedFace& face) const noexcept;
 
@@ -90,6 +94,7 @@ private:
     ConstImageView gray_{};
     const IntegralImage* motion_ = nullptr;
     int frame_ = 0;
+    int viewMovedFrame_ = -1000000;  ///< the last frame the camera moved the view
 };
 
 }  // namespace vision

@@ -3,6 +3,7 @@
 #include "vision/geometry.hpp"
 #include "vision/upright_patch.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <span>
 
@@ -42,6 +43,19 @@ bool atEdge(const TrackedFace& f, const ConstImageView& gray) noexcept
     return f.centre.x - half < 0.f || f.centre.y - half < 0.f ||
            f.centre.x + half > static_cast<float>(gray.width) ||
            f.centre.y + half > static_cast<float>(gray.height);
+}
+
+/// Whether a box of side `size` whose centre is (dx, dy) from the track's shares at least half
+/// (IoU) with the track's box of side `track`.
+bool sameFace(float track, float size, float dx, float dy) noexcept
+{
+    const auto overlap = [](float a, float b, float d) {
+        const float lo = std::max(-0.5f * a, d - 0.5f * b);
+        const float hi = std::min(0.5f * a, d + 0.5f * b);
+        return std::max(0.f, hi - lo);
+    };
+    const float common = overlap(track, size, dx) * overlap(track, size, dy);
+    return common >= 0.5f * (track * track + size * size - common);
 }
 
 }  // namespace
@@ -134,6 +148,12 @@ void TrackVerifier::reanchor(const ConstImageView& gray, Track& t, const Rect& b
     // Patch offset back to the image: rotate by the roll used for warping.
     const float px = (static_cast<float>(b.x) + static_cast<float>(b.width) * 0.5f - half) * unit;
     const float py = (static_cast<float>(b.y) + static_cast<float>(b.height) * 0.5f - half) * unit;
+    // A track drifts by a few percent of its size between re-anchorings: a box that shares less
+    // than half with it is another grouping of windows (facegen seed 42's `four`: one over the
+    // chin and neck, a quarter of the face below it, moved the box off the face), not a measure
+    // of this face.
+    if (!sameFace(t.face.size, size, px, py))
+        return;
     const float c = std::cos(roll / kDegreesPerRadian);
     const float s = std::sin(roll / kDegreesPerRadian);
     t.face.centre.x += 0.8f * (c * px - s * py);
