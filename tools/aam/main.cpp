@@ -2,23 +2,31 @@
 // reports the dissertation's cut of it; `draw` pictures an annotated image with its points numbered;
 // `fit` fits the cut CANDIDE to annotated images (5.3.1, eq. 44) and pictures a fit; `shapes`
 // synthesizes the training shapes from the fits, aligns them (weighted Procrustes) and counts
-// the shape modes.
+// the shape modes; `model` builds the whole model (shape and appearance), writes its file and
+// evaluates it on held-out persons.
 #include "annotation_drawing.hpp"
 #include "annotation_files.hpp"
 #include "annotation_schemes.hpp"
+#include "appearance_warp.hpp"
 #include "candide_fit.hpp"
+#include "model_building.hpp"
+#include "model_evaluation.hpp"
 #include "shape_alignment.hpp"
 #include "shape_modes.hpp"
 #include "shape_synthesis.hpp"
 #include "wfm_reader.hpp"
 
+#include "vision/aam_model.hpp"
 #include "vision/candide_reduction.hpp"
 
 #include <CLI/CLI.hpp>
+#include <chrono>
 #include <cstdio>
 #include <exception>
+#include <fstream>
 #include <map>
 #include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
 #include <string>
 
 namespace {
@@ -157,6 +165,96 @@ int alignTrainingShapes(const FitRequest& r) {
     return 0;
 }
 
+struct ModelRequest {
+    std::string wfm, scheme, out, picture;
+    std::vector<std::string> points, evaluate;
+    bool personSpecific = false;
+    aam::ModelOptions options;
+};
+
+std::vector<aam::FittedImage> fittedImages(const vision::CandideMesh& face, const aam::AnnotationScheme& scheme,
+                                           const std::vector<std::string>& paths) {
+    std::vector<aam::FittedImage> images;
+    for (const std::string& path : paths) images.push_back(aam::fitAnnotatedImage(face, scheme, path));
+    return images;
+}
+
+/// The mean appearance and the first modes side by side, each stretched to 0-255, 4x enlarged.
+void drawAppearance(const aam::BuiltModel& built, const std::string& out) {
+    std::vector<cv::Mat> tiles{aam::frameImage(built.frame, built.appearance.mean)};
+    for (Eigen::Index k = 0; k < std::min<Eigen::Index>(3, built.appearance.modes.cols()); ++k) {
+        tiles.push_back(aam::frameImage(built.frame, built.appearance.modes.col(k)));
+    }
+    for (cv::Mat& t : tiles) {
+        cv::normalize(t, t, 0, 255, cv::NORM_MINMAX);
+        t.convertTo(t, CV_8U);
+        cv::resize(t, t, {}, 4, 4, cv::INTER_NEAREST);
+    }
+    cv::Mat row;
+    cv::hconcat(tiles, row);
+    if (!cv::imwrite(out, row)) throw std::runtime_error(out + ": cannot write the picture");
+}
+
+void writeModelFile(const aam::BuiltModel& built, const std::string& out) {
+    const std::string bytes = vision::encodeAamModel(aam::modelForFile(built));
+    std::ofstream file(out, std::ios::binary | std::ios::trunc);
+    if (!(file << bytes) || !file.flush()) throw std::runtime_error(out + ": cannot write the model file");
+    file.close();
+    // Read back as the runtime will: what was written is what it reads.
+    const vision::AamModelFile back = vision::loadAamModel(out);
+    if (!back.ok) throw std::runtime_error(back.problem);
+    std::printf("model file %s: bytes=%zu version=%u\n", out.c_str(), bytes.size(), vision::kAamModelVersion);
+}
+
+void printEvaluation(const std::vector<aam::HeldOutResult>& results, bool personSpecific) {
+    const char* label = personSpecific ? "person-specific" : "held-out";
+    aam::HeldOutResult sum;
+    for (const aam::HeldOutResult& r : results) {
+        std::printf("%s %s: shape_rms_px=%.2f (mean only %.2f) appearance_rms=%.2f (mean only %.2f) appearance_rms_at_%d=%.2f resolution_loss=%.2f\n",
+                    label, r.annotationPath.c_str(), r.shapeRmsPx, r.shapeMeanOnlyRmsPx, r.appearanceRms,
+                    r.appearanceMeanOnlyRms, aam::kReferenceResolution, r.appearanceRmsAtReference, r.resolutionLoss);
+        sum.shapeRmsPx += r.shapeRmsPx / static_cast<double>(results.size());
+        sum.appearanceRms += r.appearanceRms / static_cast<double>(results.size());
+        sum.appearanceMeanOnlyRms += r.appearanceMeanOnlyRms / static_cast<double>(results.size());
+        sum.appearanceRmsAtReference += r.appearanceRmsAtReference / static_cast<double>(results.size());
+        sum.resolutionLoss += r.resolutionLoss / static_cast<double>(results.size());
+    }
+    std::printf("evaluation (%s): images=%zu shape_rms_px=%.2f appearance_rms=%.2f (mean only %.2f) appearance_rms_at_%d=%.2f resolution_loss=%.2f\n",
+                label, results.size(), sum.shapeRmsPx, sum.appearanceRms, sum.appearanceMeanOnlyRms,
+                aam::kReferenceResolution, sum.appearanceRmsAtReference, sum.resolutionLoss);
+}
+
+/// Fits, builds, writes, evaluates: one line each (docs/aam-model-format.md, tools/aam/README.md).
+int buildModelFile(const ModelRequest& r) {
+    const aam::AnnotationScheme& scheme = aam::schemeNamed(r.scheme);
+    const vision::CandideMesh face = vision::reduceCandideForTracking(aam::loadWfm(r.wfm));
+    const auto start = std::chrono::steady_clock::now();
+    const aam::BuiltModel built = aam::buildModel(face, fittedImages(face, scheme, r.points), r.options);
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    std::printf("model: images=%zu persons=%zu shape_modes=%ld frame=%dx%d pixels=%zu appearance_modes=%ld "
+                "(%.0f%% of the variance) mean_iterations=%d seconds=%.2f\n",
+                r.points.size(), built.persons.size(), static_cast<long>(built.shape.modes.cols()), built.frame.width,
+                built.frame.height, built.frame.pixels.size(), static_cast<long>(built.appearance.modes.cols()),
+                100 * r.options.appearanceVariance, built.appearance.iterations, seconds);
+    if (!r.out.empty()) writeModelFile(built, r.out);
+    if (!r.picture.empty()) drawAppearance(built, r.picture);
+    if (!r.evaluate.empty()) printEvaluation(aam::evaluateHeldOut(built, fittedImages(face, scheme, r.evaluate), r.personSpecific), r.personSpecific);
+    return 0;
+}
+
+/// Reads a model file as the runtime will; one line of counts, or the problem.
+int inspectModelFile(const std::string& path) {
+    const vision::AamModelFile f = vision::loadAamModel(path);
+    if (!f.ok) throw std::runtime_error(f.problem);
+    const vision::AamModel& m = f.model;
+    std::printf("model %s: version=%u vertices=%zu triangles=%zu animation_units=%zu shape_units=%zu shape_modes=%zu "
+                "frame=%dx%d pixels=%zu appearance_modes=%zu\n",
+                path.c_str(), vision::kAamModelVersion, m.mesh.vertices.size(), m.mesh.triangles.size(),
+                m.mesh.animationUnits.size(), m.mesh.shapeUnits.size(), m.shapeModeCount(), m.frameWidth,
+                m.frameHeight, m.pixels.size(), m.appearanceModeCount());
+    return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -185,8 +283,24 @@ int main(int argc, char** argv) {
     shapes->add_option("--scheme", shapesRequest.scheme, "the annotations' scheme: imm, fgnet, ibug")->capture_default_str();
     shapes->add_option("--points", shapesRequest.points, "the .asf or .pts files, one frontal image per person")->required();
     shapes->add_option("--out", shapesRequest.out, "a PNG of the aligned mean shape");
+    ModelRequest modelRequest{wfm, "imm", "", "", {}, {}, false, {}};
+    auto* model = app.add_subcommand("model", "build the model (shape and appearance, 5.3.1), write its file, evaluate it");
+    model->add_option("--wfm", modelRequest.wfm, "the CANDIDE-3 .wfm file")->capture_default_str();
+    model->add_option("--scheme", modelRequest.scheme, "the annotations' scheme: imm, fgnet, ibug")->capture_default_str();
+    model->add_option("--points", modelRequest.points, "the training .asf or .pts files, one frontal image per person")->required();
+    model->add_option("--out", modelRequest.out, "the model file to write");
+    model->add_option("--evaluate", modelRequest.evaluate, "annotated images of other persons to reconstruct");
+    model->add_flag("--person-specific", modelRequest.personSpecific, "allow evaluating persons the model saw (rows so labelled)");
+    model->add_option("--resolution", modelRequest.options.resolution, "the mean appearance's width in pixels")->capture_default_str();
+    model->add_option("--appearance-variance", modelRequest.options.appearanceVariance, "the variance fraction the appearance modes keep")->capture_default_str();
+    model->add_option("--picture", modelRequest.picture, "a PNG of the mean appearance and its first modes");
+    std::string modelFile;
+    auto* inspect = app.add_subcommand("inspect", "read a model file as the runtime will and print its sizes");
+    inspect->add_option("--model", modelFile, "the model file")->required();
     CLI11_PARSE(app, argc, argv);
     try {
+        if (*model) return buildModelFile(modelRequest);
+        if (*inspect) return inspectModelFile(modelFile);
         if (*shapes) return alignTrainingShapes(shapesRequest);
         if (*mesh) return describeMesh(wfm);
         if (*fit) return fitFiles(fitRequest);
