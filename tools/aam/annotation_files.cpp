@@ -150,6 +150,10 @@ Annotation loadPts(const std::string& path) {
     return readPts(in, path);
 }
 
+Annotation loadAnnotation(const std::string& path) {
+    return path.ends_with(".asf") ? loadAsf(path) : loadPts(path);
+}
+
 void writePts(std::ostream& out, const std::vector<Eigen::Vector2d>& points) {
     out << "version: 1\nn_points: " << points.size() << "\n{\n" << std::setprecision(9);
     for (const auto& p : points) out << p.x() << ' ' << p.y() << '\n';

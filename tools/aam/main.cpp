@@ -31,10 +31,6 @@
 
 namespace {
 
-aam::Annotation loadAnnotation(const std::string& path) {
-    return path.ends_with(".asf") ? aam::loadAsf(path) : aam::loadPts(path);
-}
-
 int describeMesh(const std::string& wfm) {
     const vision::CandideMesh full = aam::loadWfm(wfm);
     const vision::CandideMesh face = vision::reduceCandideForTracking(full);
@@ -62,7 +58,7 @@ std::vector<std::string> pointLabels(const std::string& scheme, std::size_t coun
 int drawPoints(const std::string& points, const std::string& image, const std::string& scheme, const std::string& out) {
     cv::Mat picture = cv::imread(image, cv::IMREAD_COLOR);
     if (picture.empty()) throw std::runtime_error(image + ": cannot read the image");
-    std::vector<Eigen::Vector2d> marked = loadAnnotation(points).points;
+    std::vector<Eigen::Vector2d> marked = aam::loadAnnotation(points).points;
     picture = aam::closeUp(picture, {&marked});
     aam::drawNumberedPoints(picture, marked, pointLabels(scheme, marked.size()));
     if (!cv::imwrite(out, picture)) throw std::runtime_error(out + ": cannot write the picture");
@@ -105,7 +101,7 @@ int fitFiles(const FitRequest& r) {
     std::map<int, std::pair<double, int>> perVertex;  // CANDIDE number: residual sum, count
     double rmsSum = 0;
     for (const std::string& path : r.points) {
-        const auto marked = aam::markedPoints(scheme, loadAnnotation(path), face);
+        const auto marked = aam::markedPoints(scheme, aam::loadAnnotation(path), face);
         const aam::CandideFit fit = aam::fitCandide(face, marked);
         std::printf("fit %s: points=%zu scale=%.2f roll_deg=%.2f rms_px=%.2f max_px=%.2f\n", path.c_str(), marked.size(),
                     fit.scale(), fit.rollRadians() * 57.29577951308232, fit.rmsResidualPx, fit.maxResidualPx);
@@ -148,7 +144,7 @@ int alignTrainingShapes(const FitRequest& r) {
     aam::Shape2d frontal;  // the first image's, turned 0 and neutral: the frame they are aligned in
     aam::SynthesisOptions synthesis;
     for (const std::string& path : r.points) {
-        const aam::CandideFit fit = aam::fitCandide(face, aam::markedPoints(scheme, loadAnnotation(path), face));
+        const aam::CandideFit fit = aam::fitCandide(face, aam::markedPoints(scheme, aam::loadAnnotation(path), face));
         if (frontal.empty()) frontal = aam::posedShape(face, fit, 0, 0, std::vector<float>(fit.tau.size(), 0.f));
         for (auto& shape : aam::synthesizeShapes(face, fit, synthesis)) shapes.push_back(std::move(shape));
         ++synthesis.seed;  // each image its own poses

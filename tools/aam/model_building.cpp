@@ -13,10 +13,6 @@ namespace aam {
 
 namespace {
 
-Annotation loadAnnotation(const std::string& path) {
-    return path.ends_with(".asf") ? loadAsf(path) : loadPts(path);
-}
-
 /// Every fit's synthesized shapes, aligned in the frame of the first image's frontal neutral shape
 /// (shape_alignment.hpp: so the mean is upright).
 AlignedShapes alignedTrainingShapes(const vision::CandideMesh& face, const std::vector<FittedImage>& training,

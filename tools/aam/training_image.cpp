@@ -43,7 +43,7 @@ cv::Mat loadGreyImage(const std::string& path) {
 
 std::string personOf(const std::string& path) {
     const std::string stem = fs::path(path).stem().string();
-    const auto dash = stem.find('-');
+    const auto dash = stem.find_first_of("-_");
     return dash == std::string::npos ? stem : stem.substr(0, dash);
 }
 

@@ -19,8 +19,8 @@ std::string annotatedImagePath(const std::string& annotationPath, const Annotati
 /// The image at `path` as 8-bit grey; throws std::runtime_error (one line naming the path).
 cv::Mat loadGreyImage(const std::string& path);
 
-/// The IMM person an IMM file belongs to ("01" for ".../01-1m.asf"), for the leave-persons-out
-/// split; the file's stem for any other naming (each file then its own person).
+/// The person a file shows, for the leave-persons-out split: its name up to the first '-' or '_'
+/// ("01" for IMM's ".../01-1m.asf", "franck" for FGNet's "franck_00000.pts"), else the whole stem.
 std::string personOf(const std::string& path);
 
 }  // namespace aam
