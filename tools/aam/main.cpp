@@ -11,6 +11,7 @@
 #include "candide_fit.hpp"
 #include "model_building.hpp"
 #include "model_evaluation.hpp"
+#include "training_image.hpp"
 #include "shape_alignment.hpp"
 #include "shape_modes.hpp"
 #include "shape_synthesis.hpp"
@@ -223,6 +224,11 @@ void printEvaluation(const std::vector<aam::HeldOutResult>& results, bool person
 /// Fits, builds, writes, evaluates: one line each (docs/aam-model-format.md, tools/aam/README.md).
 int buildModelFile(const ModelRequest& r) {
     const aam::AnnotationScheme& scheme = aam::schemeNamed(r.scheme);
+    if (!r.personSpecific) {  // before any work, so a wrong split writes no model
+        std::vector<std::string> persons;
+        for (const std::string& path : r.points) persons.push_back(aam::personOf(path));
+        aam::refuseSeenPersons(persons, r.evaluate);
+    }
     const vision::CandideMesh face = vision::reduceCandideForTracking(aam::loadWfm(r.wfm));
     const auto start = std::chrono::steady_clock::now();
     const aam::BuiltModel built = aam::buildModel(face, fittedImages(face, scheme, r.points), r.options);

@@ -3,6 +3,7 @@
 #include "model_evaluation.hpp"
 
 #include "appearance_warp.hpp"
+#include "training_image.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -11,15 +12,6 @@
 namespace aam {
 
 namespace {
-
-void refuseSeenPersons(const BuiltModel& model, const std::vector<FittedImage>& heldOut) {
-    for (const FittedImage& image : heldOut) {
-        if (std::find(model.persons.begin(), model.persons.end(), image.person) != model.persons.end()) {
-            throw std::invalid_argument("evaluation: " + image.annotationPath + " is of person " + image.person +
-                                        ", whom the model was built from (--person-specific to allow it, labelled so)");
-        }
-    }
-}
 
 Eigen::VectorXd asVector(const Shape2d& shape) {
     Eigen::VectorXd v(2 * static_cast<Eigen::Index>(shape.size()));
@@ -67,9 +59,23 @@ void appearanceResiduals(const BuiltModel& model, const AppearanceFrame& referen
 
 }  // namespace
 
+void refuseSeenPersons(const std::vector<std::string>& trainingPersons, const std::vector<std::string>& heldOutPaths) {
+    for (const std::string& path : heldOutPaths) {
+        const std::string person = personOf(path);
+        if (std::find(trainingPersons.begin(), trainingPersons.end(), person) != trainingPersons.end()) {
+            throw std::invalid_argument("evaluation: " + path + " is of person " + person +
+                                        ", whom the model was built from (--person-specific to allow it, labelled so)");
+        }
+    }
+}
+
 std::vector<HeldOutResult> evaluateHeldOut(const BuiltModel& model, const std::vector<FittedImage>& heldOut,
                                            bool personSpecific) {
-    if (!personSpecific) refuseSeenPersons(model, heldOut);
+    if (!personSpecific) {
+        std::vector<std::string> paths;
+        for (const FittedImage& image : heldOut) paths.push_back(image.annotationPath);
+        refuseSeenPersons(model.persons, paths);
+    }
     const AppearanceFrame reference = appearanceFrame(model.face, model.shape.mean, kReferenceResolution);
     std::vector<HeldOutResult> results;
     for (const FittedImage& image : heldOut) {
