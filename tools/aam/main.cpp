@@ -141,22 +141,13 @@ void drawMeanShape(const vision::CandideMesh& face, aam::Shape2d mean, const std
 int alignTrainingShapes(const FitRequest& r) {
     const aam::AnnotationScheme& scheme = aam::schemeNamed(r.scheme);
     const vision::CandideMesh face = vision::reduceCandideForTracking(aam::loadWfm(r.wfm));
-    std::vector<aam::Shape2d> shapes;
-    aam::Shape2d frontal;  // the first image's, turned 0 and neutral: the frame they are aligned in
-    aam::SynthesisOptions synthesis;
-    for (const std::string& path : r.points) {
-        const aam::CandideFit fit = aam::fitCandide(face, aam::markedPoints(scheme, aam::loadAnnotation(path), face));
-        if (frontal.empty()) frontal = aam::posedShape(face, fit, 0, 0, std::vector<float>(fit.tau.size(), 0.f));
-        for (auto& shape : aam::synthesizeShapes(face, fit, synthesis)) shapes.push_back(std::move(shape));
-        ++synthesis.seed;  // each image its own poses
-    }
-    aam::AlignmentOptions alignment;
-    alignment.reference = &frontal;
-    const aam::AlignedShapes aligned = aam::alignShapes(shapes, alignment);
+    std::vector<aam::CandideFit> fits;
+    for (const std::string& path : r.points) fits.push_back(aam::fitCandide(face, aam::markedPoints(scheme, aam::loadAnnotation(path), face)));
+    const aam::AlignedShapes aligned = aam::alignedTrainingShapes(face, fits, {});
     const aam::ShapeModes model = aam::shapeModes(aligned);
     std::printf("shapes: images=%zu shapes=%zu vertices=%zu iterations=%d weight_min=%.3g weight_max=%.3g "
                 "modes=%ld (98%% of the variance)\n",
-                r.points.size(), shapes.size(), face.vertices.size(), aligned.iterations, aligned.weights.minCoeff(),
+                r.points.size(), aligned.shapes.size(), face.vertices.size(), aligned.iterations, aligned.weights.minCoeff(),
                 aligned.weights.maxCoeff(), static_cast<long>(model.modes.cols()));
     if (!r.out.empty()) drawMeanShape(face, aligned.mean, r.out);
     return 0;

@@ -13,22 +13,6 @@ namespace aam {
 
 namespace {
 
-/// Every fit's synthesized shapes, aligned in the frame of the first image's frontal neutral shape
-/// (shape_alignment.hpp: so the mean is upright).
-AlignedShapes alignedTrainingShapes(const vision::CandideMesh& face, const std::vector<FittedImage>& training,
-                                    SynthesisOptions synthesis) {
-    std::vector<Shape2d> shapes;
-    for (const FittedImage& image : training) {
-        for (auto& s : synthesizeShapes(face, image.fit, synthesis)) shapes.push_back(std::move(s));
-        ++synthesis.seed;  // each image its own poses
-    }
-    const CandideFit& first = training.front().fit;
-    const Shape2d frontal = posedShape(face, first, 0, 0, std::vector<float>(first.tau.size(), 0.f));
-    AlignmentOptions alignment;
-    alignment.reference = &frontal;
-    return alignShapes(shapes, alignment);
-}
-
 std::vector<float> asFloats(const Eigen::MatrixXd& m) {
     std::vector<float> out(static_cast<std::size_t>(m.size()));
     std::transform(m.data(), m.data() + m.size(), out.begin(), [](double v) { return static_cast<float>(v); });
@@ -36,6 +20,19 @@ std::vector<float> asFloats(const Eigen::MatrixXd& m) {
 }
 
 }  // namespace
+
+AlignedShapes alignedTrainingShapes(const vision::CandideMesh& face, const std::vector<CandideFit>& fits,
+                                    SynthesisOptions synthesis) {
+    std::vector<Shape2d> shapes;
+    for (const CandideFit& fit : fits) {
+        for (auto& s : synthesizeShapes(face, fit, synthesis)) shapes.push_back(std::move(s));
+        ++synthesis.seed;  // each image its own poses
+    }
+    const Shape2d frontal = posedShape(face, fits.front(), 0, 0, std::vector<float>(fits.front().tau.size(), 0.f));
+    AlignmentOptions alignment;
+    alignment.reference = &frontal;
+    return alignShapes(shapes, alignment);
+}
 
 FittedImage fitAnnotatedImage(const vision::CandideMesh& face, const AnnotationScheme& scheme, const std::string& path) {
     FittedImage image;
@@ -56,7 +53,9 @@ BuiltModel buildModel(const vision::CandideMesh& face, const std::vector<FittedI
     for (const FittedImage& image : training) {
         if (std::find(built.persons.begin(), built.persons.end(), image.person) == built.persons.end()) built.persons.push_back(image.person);
     }
-    built.aligned = alignedTrainingShapes(face, training, options.synthesis);
+    std::vector<CandideFit> fits;
+    for (const FittedImage& image : training) fits.push_back(image.fit);
+    built.aligned = alignedTrainingShapes(face, fits, options.synthesis);
     built.shape = shapeModes(built.aligned, options.shapeVariance);
     built.frame = appearanceFrame(face, built.shape.mean, options.resolution);
     std::vector<Eigen::VectorXd> warped;

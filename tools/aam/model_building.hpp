@@ -43,6 +43,11 @@ struct FittedImage {
 /// Reads the annotation and its image and fits `face` to the marks (5.3.1, eq. 44).
 FittedImage fitAnnotatedImage(const vision::CandideMesh& face, const AnnotationScheme& scheme, const std::string& path);
 
+/// Every fit's synthesized shapes (each its own seed from `synthesis.seed` on), aligned in the
+/// frame of the first fit's frontal neutral shape (shape_alignment.hpp: so the mean is upright).
+AlignedShapes alignedTrainingShapes(const vision::CandideMesh& face, const std::vector<CandideFit>& fits,
+                                    SynthesisOptions synthesis);
+
 struct BuiltModel {
     vision::CandideMesh face;
     std::vector<std::string> persons;  ///< whom it was built from, for the leave-persons-out check
