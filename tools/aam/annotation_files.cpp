@@ -2,8 +2,10 @@
 // per part of each file.
 #include "annotation_files.hpp"
 
+#include "vision/bounded_file.hpp"
+#include "vision/input_limits.hpp"
+
 #include <charconv>
-#include <fstream>
 #include <iomanip>
 #include <optional>
 #include <sstream>
@@ -125,16 +127,31 @@ Annotation readPts(std::istream& in, const std::string& name) {
     return a;
 }
 
+namespace {
+
+/// The file's text, read through readBoundedFile (limits::kAnnotationBytes).
+std::istringstream annotationText(const std::string& path) {
+    const vision::BoundedFile file = vision::readBoundedFile(path, vision::limits::kAnnotationBytes);
+    if (file.status != vision::BoundedFile::Status::Ok) {
+        throw AnnotationError(path + ": cannot read the annotation file: " + file.problem);
+    }
+    return std::istringstream(file.text);
+}
+
+}  // namespace
+
 Annotation loadAsf(const std::string& path, int imageWidth, int imageHeight) {
-    std::ifstream in(path);
-    if (!in) throw AnnotationError(path + ": cannot open the annotation file");
+    std::istringstream in = annotationText(path);
     return readAsf(in, path, imageWidth, imageHeight);
 }
 
 Annotation loadPts(const std::string& path) {
-    std::ifstream in(path);
-    if (!in) throw AnnotationError(path + ": cannot open the annotation file");
+    std::istringstream in = annotationText(path);
     return readPts(in, path);
+}
+
+Annotation loadAnnotation(const std::string& path) {
+    return path.ends_with(".asf") ? loadAsf(path) : loadPts(path);
 }
 
 void writePts(std::ostream& out, const std::vector<Eigen::Vector2d>& points) {

@@ -41,6 +41,9 @@ Annotation loadAsf(const std::string& path, int imageWidth = kImmImageWidth, int
 Annotation readPts(std::istream& in, const std::string& name);
 Annotation loadPts(const std::string& path);
 
+/// An .asf file by loadAsf, any other by loadPts.
+Annotation loadAnnotation(const std::string& path);
+
 /// Writes `points` as a .pts file (for integrators' own annotations and for tests).
 void writePts(std::ostream& out, const std::vector<Eigen::Vector2d>& points);
 

@@ -2,30 +2,35 @@
 // reports the dissertation's cut of it; `draw` pictures an annotated image with its points numbered;
 // `fit` fits the cut CANDIDE to annotated images (5.3.1, eq. 44) and pictures a fit; `shapes`
 // synthesizes the training shapes from the fits, aligns them (weighted Procrustes) and counts
-// the shape modes.
+// the shape modes; `model` builds the whole model (shape and appearance), writes its file and
+// evaluates it on held-out persons.
 #include "annotation_drawing.hpp"
 #include "annotation_files.hpp"
 #include "annotation_schemes.hpp"
+#include "appearance_warp.hpp"
 #include "candide_fit.hpp"
+#include "model_building.hpp"
+#include "model_evaluation.hpp"
+#include "training_image.hpp"
 #include "shape_alignment.hpp"
 #include "shape_modes.hpp"
 #include "shape_synthesis.hpp"
 #include "wfm_reader.hpp"
 
+#include "vision/aam_model.hpp"
 #include "vision/candide_reduction.hpp"
 
 #include <CLI/CLI.hpp>
+#include <chrono>
 #include <cstdio>
 #include <exception>
+#include <fstream>
 #include <map>
 #include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
 #include <string>
 
 namespace {
-
-aam::Annotation loadAnnotation(const std::string& path) {
-    return path.ends_with(".asf") ? aam::loadAsf(path) : aam::loadPts(path);
-}
 
 int describeMesh(const std::string& wfm) {
     const vision::CandideMesh full = aam::loadWfm(wfm);
@@ -54,7 +59,7 @@ std::vector<std::string> pointLabels(const std::string& scheme, std::size_t coun
 int drawPoints(const std::string& points, const std::string& image, const std::string& scheme, const std::string& out) {
     cv::Mat picture = cv::imread(image, cv::IMREAD_COLOR);
     if (picture.empty()) throw std::runtime_error(image + ": cannot read the image");
-    std::vector<Eigen::Vector2d> marked = loadAnnotation(points).points;
+    std::vector<Eigen::Vector2d> marked = aam::loadAnnotation(points).points;
     picture = aam::closeUp(picture, {&marked});
     aam::drawNumberedPoints(picture, marked, pointLabels(scheme, marked.size()));
     if (!cv::imwrite(out, picture)) throw std::runtime_error(out + ": cannot write the picture");
@@ -97,7 +102,7 @@ int fitFiles(const FitRequest& r) {
     std::map<int, std::pair<double, int>> perVertex;  // CANDIDE number: residual sum, count
     double rmsSum = 0;
     for (const std::string& path : r.points) {
-        const auto marked = aam::markedPoints(scheme, loadAnnotation(path), face);
+        const auto marked = aam::markedPoints(scheme, aam::loadAnnotation(path), face);
         const aam::CandideFit fit = aam::fitCandide(face, marked);
         std::printf("fit %s: points=%zu scale=%.2f roll_deg=%.2f rms_px=%.2f max_px=%.2f\n", path.c_str(), marked.size(),
                     fit.scale(), fit.rollRadians() * 57.29577951308232, fit.rmsResidualPx, fit.maxResidualPx);
@@ -136,24 +141,110 @@ void drawMeanShape(const vision::CandideMesh& face, aam::Shape2d mean, const std
 int alignTrainingShapes(const FitRequest& r) {
     const aam::AnnotationScheme& scheme = aam::schemeNamed(r.scheme);
     const vision::CandideMesh face = vision::reduceCandideForTracking(aam::loadWfm(r.wfm));
-    std::vector<aam::Shape2d> shapes;
-    aam::Shape2d frontal;  // the first image's, turned 0 and neutral: the frame they are aligned in
-    aam::SynthesisOptions synthesis;
-    for (const std::string& path : r.points) {
-        const aam::CandideFit fit = aam::fitCandide(face, aam::markedPoints(scheme, loadAnnotation(path), face));
-        if (frontal.empty()) frontal = aam::posedShape(face, fit, 0, 0, std::vector<float>(fit.tau.size(), 0.f));
-        for (auto& shape : aam::synthesizeShapes(face, fit, synthesis)) shapes.push_back(std::move(shape));
-        ++synthesis.seed;  // each image its own poses
-    }
-    aam::AlignmentOptions alignment;
-    alignment.reference = &frontal;
-    const aam::AlignedShapes aligned = aam::alignShapes(shapes, alignment);
+    std::vector<aam::CandideFit> fits;
+    for (const std::string& path : r.points) fits.push_back(aam::fitCandide(face, aam::markedPoints(scheme, aam::loadAnnotation(path), face)));
+    const aam::AlignedShapes aligned = aam::alignedTrainingShapes(face, fits, {});
     const aam::ShapeModes model = aam::shapeModes(aligned);
     std::printf("shapes: images=%zu shapes=%zu vertices=%zu iterations=%d weight_min=%.3g weight_max=%.3g "
                 "modes=%ld (98%% of the variance)\n",
-                r.points.size(), shapes.size(), face.vertices.size(), aligned.iterations, aligned.weights.minCoeff(),
+                r.points.size(), aligned.shapes.size(), face.vertices.size(), aligned.iterations, aligned.weights.minCoeff(),
                 aligned.weights.maxCoeff(), static_cast<long>(model.modes.cols()));
     if (!r.out.empty()) drawMeanShape(face, aligned.mean, r.out);
+    return 0;
+}
+
+struct ModelRequest {
+    std::string wfm, scheme, out, picture;
+    std::vector<std::string> points, evaluate;
+    bool personSpecific = false;
+    aam::ModelOptions options;
+};
+
+std::vector<aam::FittedImage> fittedImages(const vision::CandideMesh& face, const aam::AnnotationScheme& scheme,
+                                           const std::vector<std::string>& paths) {
+    std::vector<aam::FittedImage> images;
+    for (const std::string& path : paths) images.push_back(aam::fitAnnotatedImage(face, scheme, path));
+    return images;
+}
+
+/// The mean appearance and the first modes side by side, each stretched to 0-255, 4x enlarged.
+void drawAppearance(const aam::BuiltModel& built, const std::string& out) {
+    std::vector<cv::Mat> tiles{aam::frameImage(built.frame, built.appearance.mean)};
+    for (Eigen::Index k = 0; k < std::min<Eigen::Index>(3, built.appearance.modes.cols()); ++k) {
+        tiles.push_back(aam::frameImage(built.frame, built.appearance.modes.col(k)));
+    }
+    for (cv::Mat& t : tiles) {
+        cv::normalize(t, t, 0, 255, cv::NORM_MINMAX);
+        t.convertTo(t, CV_8U);
+        cv::resize(t, t, {}, 4, 4, cv::INTER_NEAREST);
+    }
+    cv::Mat row;
+    cv::hconcat(tiles, row);
+    if (!cv::imwrite(out, row)) throw std::runtime_error(out + ": cannot write the picture");
+}
+
+void writeModelFile(const aam::BuiltModel& built, const std::string& out) {
+    const std::string bytes = vision::encodeAamModel(aam::modelForFile(built));
+    std::ofstream file(out, std::ios::binary | std::ios::trunc);
+    if (!(file << bytes) || !file.flush()) throw std::runtime_error(out + ": cannot write the model file");
+    file.close();
+    // Read back as the runtime will: what was written is what it reads.
+    const vision::AamModelFile back = vision::loadAamModel(out);
+    if (!back.ok) throw std::runtime_error(back.problem);
+    std::printf("model file %s: bytes=%zu version=%u\n", out.c_str(), bytes.size(), vision::kAamModelVersion);
+}
+
+void printEvaluation(const std::vector<aam::HeldOutResult>& results, bool personSpecific) {
+    const char* label = personSpecific ? "person-specific" : "held-out";
+    aam::HeldOutResult sum;
+    for (const aam::HeldOutResult& r : results) {
+        std::printf("%s %s: shape_rms_px=%.2f (mean only %.2f) appearance_rms=%.2f (mean only %.2f) appearance_rms_at_%d=%.2f resolution_loss=%.2f\n",
+                    label, r.annotationPath.c_str(), r.shapeRmsPx, r.shapeMeanOnlyRmsPx, r.appearanceRms,
+                    r.appearanceMeanOnlyRms, aam::kReferenceResolution, r.appearanceRmsAtReference, r.resolutionLoss);
+        sum.shapeRmsPx += r.shapeRmsPx / static_cast<double>(results.size());
+        sum.appearanceRms += r.appearanceRms / static_cast<double>(results.size());
+        sum.appearanceMeanOnlyRms += r.appearanceMeanOnlyRms / static_cast<double>(results.size());
+        sum.appearanceRmsAtReference += r.appearanceRmsAtReference / static_cast<double>(results.size());
+        sum.resolutionLoss += r.resolutionLoss / static_cast<double>(results.size());
+    }
+    std::printf("evaluation (%s): images=%zu shape_rms_px=%.2f appearance_rms=%.2f (mean only %.2f) appearance_rms_at_%d=%.2f resolution_loss=%.2f\n",
+                label, results.size(), sum.shapeRmsPx, sum.appearanceRms, sum.appearanceMeanOnlyRms,
+                aam::kReferenceResolution, sum.appearanceRmsAtReference, sum.resolutionLoss);
+}
+
+/// Fits, builds, writes, evaluates: one line each (docs/aam-model-format.md, tools/aam/README.md).
+int buildModelFile(const ModelRequest& r) {
+    const aam::AnnotationScheme& scheme = aam::schemeNamed(r.scheme);
+    if (!r.personSpecific) {  // before any work, so a wrong split writes no model
+        std::vector<std::string> persons;
+        for (const std::string& path : r.points) persons.push_back(aam::personOf(path));
+        aam::refuseSeenPersons(persons, r.evaluate);
+    }
+    const vision::CandideMesh face = vision::reduceCandideForTracking(aam::loadWfm(r.wfm));
+    const auto start = std::chrono::steady_clock::now();
+    const aam::BuiltModel built = aam::buildModel(face, fittedImages(face, scheme, r.points), r.options);
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    std::printf("model: images=%zu persons=%zu shape_modes=%ld frame=%dx%d pixels=%zu appearance_modes=%ld "
+                "(%.0f%% of the variance) mean_iterations=%d seconds=%.2f\n",
+                r.points.size(), built.persons.size(), static_cast<long>(built.shape.modes.cols()), built.frame.width,
+                built.frame.height, built.frame.pixels.size(), static_cast<long>(built.appearance.modes.cols()),
+                100 * r.options.appearanceVariance, built.appearance.iterations, seconds);
+    if (!r.out.empty()) writeModelFile(built, r.out);
+    if (!r.picture.empty()) drawAppearance(built, r.picture);
+    if (!r.evaluate.empty()) printEvaluation(aam::evaluateHeldOut(built, fittedImages(face, scheme, r.evaluate), r.personSpecific), r.personSpecific);
+    return 0;
+}
+
+/// Reads a model file as the runtime will; one line of counts, or the problem.
+int inspectModelFile(const std::string& path) {
+    const vision::AamModelFile f = vision::loadAamModel(path);
+    if (!f.ok) throw std::runtime_error(f.problem);
+    const vision::AamModel& m = f.model;
+    std::printf("model %s: version=%u vertices=%zu triangles=%zu animation_units=%zu shape_units=%zu shape_modes=%zu "
+                "frame=%dx%d pixels=%zu appearance_modes=%zu\n",
+                path.c_str(), vision::kAamModelVersion, m.mesh.vertices.size(), m.mesh.triangles.size(),
+                m.mesh.animationUnits.size(), m.mesh.shapeUnits.size(), m.shapeModeCount(), m.frameWidth,
+                m.frameHeight, m.pixels.size(), m.appearanceModeCount());
     return 0;
 }
 
@@ -185,8 +276,24 @@ int main(int argc, char** argv) {
     shapes->add_option("--scheme", shapesRequest.scheme, "the annotations' scheme: imm, fgnet, ibug")->capture_default_str();
     shapes->add_option("--points", shapesRequest.points, "the .asf or .pts files, one frontal image per person")->required();
     shapes->add_option("--out", shapesRequest.out, "a PNG of the aligned mean shape");
+    ModelRequest modelRequest{wfm, "imm", "", "", {}, {}, false, {}};
+    auto* model = app.add_subcommand("model", "build the model (shape and appearance, 5.3.1), write its file, evaluate it");
+    model->add_option("--wfm", modelRequest.wfm, "the CANDIDE-3 .wfm file")->capture_default_str();
+    model->add_option("--scheme", modelRequest.scheme, "the annotations' scheme: imm, fgnet, ibug")->capture_default_str();
+    model->add_option("--points", modelRequest.points, "the training .asf or .pts files, one frontal image per person")->required();
+    model->add_option("--out", modelRequest.out, "the model file to write");
+    model->add_option("--evaluate", modelRequest.evaluate, "annotated images of other persons to reconstruct");
+    model->add_flag("--person-specific", modelRequest.personSpecific, "allow evaluating persons the model saw (rows so labelled)");
+    model->add_option("--resolution", modelRequest.options.resolution, "the mean appearance's width in pixels")->capture_default_str();
+    model->add_option("--appearance-variance", modelRequest.options.appearanceVariance, "the variance fraction the appearance modes keep")->capture_default_str();
+    model->add_option("--picture", modelRequest.picture, "a PNG of the mean appearance and its first modes");
+    std::string modelFile;
+    auto* inspect = app.add_subcommand("inspect", "read a model file as the runtime will and print its sizes");
+    inspect->add_option("--model", modelFile, "the model file")->required();
     CLI11_PARSE(app, argc, argv);
     try {
+        if (*model) return buildModelFile(modelRequest);
+        if (*inspect) return inspectModelFile(modelFile);
         if (*shapes) return alignTrainingShapes(shapesRequest);
         if (*mesh) return describeMesh(wfm);
         if (*fit) return fitFiles(fitRequest);

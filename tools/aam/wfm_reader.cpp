@@ -2,8 +2,10 @@
 // line, the next unit's name), and one function per section of the file, in the file's order.
 #include "wfm_reader.hpp"
 
+#include "vision/bounded_file.hpp"
+#include "vision/input_limits.hpp"
+
 #include <charconv>
-#include <fstream>
 #include <optional>
 #include <sstream>
 #include <vector>
@@ -214,8 +216,11 @@ vision::CandideMesh readWfm(std::istream& in, const std::string& name) {
 }
 
 vision::CandideMesh loadWfm(const std::string& path) {
-    std::ifstream in(path);
-    if (!in) throw WfmError(path + ": cannot open the CANDIDE model file");
+    const vision::BoundedFile file = vision::readBoundedFile(path, vision::limits::kCandideWfmBytes);
+    if (file.status != vision::BoundedFile::Status::Ok) {
+        throw WfmError(path + ": cannot read the CANDIDE model file: " + file.problem);
+    }
+    std::istringstream in(file.text);
     return readWfm(in, path);
 }
 

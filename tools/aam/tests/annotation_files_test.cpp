@@ -2,10 +2,12 @@
 // round trip, every malformed file rejected with one line naming the line.
 #include "annotation_files.hpp"
 #include "test_paths.hpp"
+#include "vision/input_limits.hpp"
 
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <fstream>
 #include <sstream>
 
 namespace {
@@ -92,7 +94,18 @@ TEST(AnnotationFiles, RejectsMalformedPts) {
 
 TEST(AnnotationFiles, AMissingFileIsOneLine) {
     EXPECT_EQ(errorOf([](std::istream&) { aam::loadPts("/nonexistent/a.pts"); }, ""),
-              "/nonexistent/a.pts: cannot open the annotation file");
+              "/nonexistent/a.pts: cannot read the annotation file: cannot read file: No such file or directory");
+}
+
+TEST(AnnotationFiles, ADeviceOrAHugeFileIsOneLine) {
+    // Read through readBoundedFile with limits::kAnnotationBytes.
+    EXPECT_EQ(errorOf([](std::istream&) { aam::loadAsf("/dev/zero"); }, ""),
+              "/dev/zero: cannot read the annotation file: not a regular file (a FIFO, a device or a socket)");
+    const std::string huge = testing_support::freshOutputDir("annotation_files") + "/huge.pts";
+    std::ofstream(huge) << std::string(vision::limits::kAnnotationBytes + 1, '#');
+    EXPECT_EQ(errorOf([&](std::istream&) { aam::loadPts(huge); }, ""),
+              huge + ": cannot read the annotation file: file is too large: " +
+                  std::to_string(vision::limits::kAnnotationBytes + 1) + " bytes (allowed: up to 1048576 bytes)");
 }
 
 }  // namespace

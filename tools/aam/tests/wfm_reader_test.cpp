@@ -108,7 +108,18 @@ TEST(WfmReader, AMissingFileIsOneLine) {
         aam::loadWfm("/nonexistent/candide3.wfm");
         FAIL() << "no error";
     } catch (const aam::WfmError& e) {
-        EXPECT_STREQ(e.what(), "/nonexistent/candide3.wfm: cannot open the CANDIDE model file");
+        EXPECT_STREQ(e.what(),
+                     "/nonexistent/candide3.wfm: cannot read the CANDIDE model file: cannot read file: No such file or directory");
+    }
+}
+
+TEST(WfmReader, ADeviceInTheFilesPlaceIsOneLine) {
+    // Read through readBoundedFile: /dev/zero is refused at once instead of read for ever.
+    try {
+        aam::loadWfm("/dev/zero");
+        FAIL() << "no error";
+    } catch (const aam::WfmError& e) {
+        EXPECT_STREQ(e.what(), "/dev/zero: cannot read the CANDIDE model file: not a regular file (a FIFO, a device or a socket)");
     }
 }
 
