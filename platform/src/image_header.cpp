@@ -56,8 +56,8 @@ std::optional<ImageHeaderSize> jpegSize(const std::uint8_t* b, std::size_t size)
         const std::size_t length = bigEndian16(b + at + 2);
         if (length < 2)
             return std::nullopt;
-        const bool sof = marker >= 0xC0 && marker <= 0xCF && marker != 0xC4 && marker != 0xC8 &&
-                         marker != 0xCC;
+        const bool sof =
+            marker >= 0xC0 && marker <= 0xCF && marker != 0xC4 && marker != 0xC8 && marker != 0xCC;
         if (sof) {
             if (at + 9 > size)
                 return std::nullopt;
@@ -99,8 +99,7 @@ bool withinLimits(const ImageHeaderSize& header) noexcept
     using vision::limits::kMaxImageSide;
     const std::int64_t w = header.width;
     const std::int64_t h = header.height;
-    return w >= 1 && h >= 1 && w <= kMaxImageSide && h <= kMaxImageSide &&
-           w * h <= kMaxImagePixels;
+    return w >= 1 && h >= 1 && w <= kMaxImageSide && h <= kMaxImageSide && w * h <= kMaxImagePixels;
 }
 
 }  // namespace

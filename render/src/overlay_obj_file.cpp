@@ -185,8 +185,8 @@ std::vector<OverlayVertex> readObjTriangles(const std::string& path, const std::
         for (std::size_t t = 0; t + 2 < indices.size(); t += 3) {
             OverlayVertex triangle[3];
             for (int k = 0; k < 3; ++k)
-                triangle[k] = cornerVertex(obj, shape, indices[t + static_cast<std::size_t>(k)],
-                                           needUv);
+                triangle[k] =
+                    cornerVertex(obj, shape, indices[t + static_cast<std::size_t>(k)], needUv);
             float n[3];
             anyArea = faceNormal(triangle, n) || anyArea;
             for (OverlayVertex& v : triangle) {
@@ -198,8 +198,8 @@ std::vector<OverlayVertex> readObjTriangles(const std::string& path, const std::
     }
     for (std::size_t i = 0; i < objects.size(); ++i)
         if (!used[i])
-            throw std::runtime_error("OBJ " + shownPath + " has no object or group '" +
-                                     objects[i] + "'");
+            throw std::runtime_error("OBJ " + shownPath + " has no object or group '" + objects[i] +
+                                     "'");
     if (vertices.empty())
         throw std::runtime_error("OBJ " + shownPath + " has no faces");
     if (!anyArea)

@@ -3,7 +3,6 @@
 // name. Each problem is one short line; none blocks, none reaches the terminal raw.
 
 #include "firmware/config.hpp"
-
 #include "test_paths.hpp"
 
 #include <gtest/gtest.h>
@@ -42,9 +41,9 @@ TEST(ConfigInputBounds, AFifoInPlaceOfTheConfigIsRefusedWithoutWaitingForAWriter
 {
     const std::string path = testing_support::freshOutputDir("config_fifo") + "/mirror.toml";
     ASSERT_EQ(::mkfifo(path.c_str(), 0600), 0);
-    EXPECT_EQ(problemsOf(path), (std::vector<std::string>{
-                                    path + ":1:1: config: not a regular file (a FIFO, a "
-                                           "device or a socket)"}));
+    EXPECT_EQ(problemsOf(path),
+              (std::vector<std::string>{path + ":1:1: config: not a regular file (a FIFO, a "
+                                               "device or a socket)"}));
 }
 
 TEST(ConfigInputBounds, ADeviceInPlaceOfTheConfigIsRefused)
@@ -73,16 +72,15 @@ TEST(ConfigInputBounds, ControlCharactersInAStringAreOneEscapedLine)
 TEST(ConfigInputBounds, AHugeValueIsNamedByItsLengthNotEchoed)
 {
     const std::string huge(900000, 'x');
-    for (const std::string& set :
-         {"display.mode=\"" + huge + "\"", "source.spec=\"" + huge + "\"",
-          "log.level=\"" + huge + "\"", "display." + huge + "=1", huge}) {
+    for (const std::string& set : {"display.mode=\"" + huge + "\"", "source.spec=\"" + huge + "\"",
+                                   "log.level=\"" + huge + "\"", "display." + huge + "=1", huge}) {
         const auto lines = problemsOf("", {set});
         ASSERT_EQ(lines.size(), 1u);
         EXPECT_LT(lines[0].size(), 400u) << lines[0].substr(0, 400);
     }
     // The longest string a key takes is 4096 bytes (PATH_MAX).
-    EXPECT_NO_THROW(firmware::loadConfig(
-        {"", false, {"faces.cascade=\"/" + std::string(4095, 'c') + "\""}}));
+    EXPECT_NO_THROW(
+        firmware::loadConfig({"", false, {"faces.cascade=\"/" + std::string(4095, 'c') + "\""}}));
     const auto tooLong = problemsOf("", {"faces.cascade=\"/" + std::string(4096, 'c') + "\""});
     ASSERT_EQ(tooLong.size(), 1u);
     EXPECT_NE(tooLong[0].find("4097 bytes is too long (at most 4096)"), std::string::npos)

@@ -2,9 +2,8 @@
 // finite or have no area, an overlay over the triangle budget, a PNG whose header claims a huge
 // picture. Each is one line naming the file, refused before it costs memory or reaches GL.
 
-#include "render/overlay_catalogue.hpp"
-
 #include "platform/png_writer.hpp"
+#include "render/overlay_catalogue.hpp"
 #include "test_paths.hpp"
 #include "vision/input_limits.hpp"
 
@@ -158,7 +157,8 @@ TEST(OverlayInputBounds, ATextureHeaderClaimingAHugePictureIsRefusedBeforeDecodi
     std::ofstream(dir + "/bomb.png", std::ios::binary)
         .write(reinterpret_cast<const char*>(png.data()), static_cast<std::streamsize>(png.size()));
 
-    const std::string e = loadError("png_bomb", kTriangle, "  texture = \"" + dir + "/bomb.png\"\n");
+    const std::string e =
+        loadError("png_bomb", kTriangle, "  texture = \"" + dir + "/bomb.png\"\n");
     EXPECT_NE(e.find("texture " + dir + "/bomb.png: 60000x60000 is larger than 4096x4096"),
               std::string::npos)
         << e;

@@ -1,10 +1,9 @@
 // The AAM model file (docs/aam-model-format.md): a model read back equals the one written; a
 // missing, short, foreign, newer, truncated or bit-flipped file is refused with one line saying
 // which; a model whose parts disagree is not written.
-#include "vision/aam_model.hpp"
-
 #include "crc32.hpp"  // private to vision/src
 #include "test_paths.hpp"
+#include "vision/aam_model.hpp"
 
 #include <gtest/gtest.h>
 
@@ -14,7 +13,8 @@
 
 namespace {
 
-vision::AamModel tinyModel() {
+vision::AamModel tinyModel()
+{
     vision::AamModel m;
     m.mesh.vertices = {{0, 0, 0}, {1, 0, 0.5f}, {0, 1, 0}};
     m.mesh.candideNumber = {5, 7, 9};
@@ -33,11 +33,13 @@ vision::AamModel tinyModel() {
     return m;
 }
 
-vision::AamModelFile decoded(const std::string& bytes) {
+vision::AamModelFile decoded(const std::string& bytes)
+{
     return vision::decodeAamModel(std::as_bytes(std::span(bytes.data(), bytes.size())));
 }
 
-TEST(AamModelFile, ReadsBackWhatWasWritten) {
+TEST(AamModelFile, ReadsBackWhatWasWritten)
+{
     const vision::AamModel m = tinyModel();
     const vision::AamModelFile back = decoded(vision::encodeAamModel(m));
     ASSERT_TRUE(back.ok) << back.problem;
@@ -60,12 +62,14 @@ TEST(AamModelFile, ReadsBackWhatWasWritten) {
     EXPECT_EQ(back.model.appearanceVariances, m.appearanceVariances);
 }
 
-TEST(AamModelFile, ChecksumIsTheStandardCrc32) {
+TEST(AamModelFile, ChecksumIsTheStandardCrc32)
+{
     const std::string check = "123456789";
     EXPECT_EQ(vision::crc32(std::as_bytes(std::span(check.data(), check.size()))), 0xCBF43926u);
 }
 
-TEST(AamModelFile, EveryTruncationIsNamed) {
+TEST(AamModelFile, EveryTruncationIsNamed)
+{
     const std::string bytes = vision::encodeAamModel(tinyModel());
     for (std::size_t n = 0; n < bytes.size(); ++n) {
         const vision::AamModelFile f = decoded(bytes.substr(0, n));
@@ -73,12 +77,13 @@ TEST(AamModelFile, EveryTruncationIsNamed) {
         // The first 8 bytes are the magic: a shorter prefix is still "shorter than the header".
         EXPECT_EQ(f.problem.rfind("truncated: ", 0), 0u) << n << ": " << f.problem;
     }
-    EXPECT_EQ(decoded(bytes + "x").problem, "trailing bytes: the header announces " +
-                                                std::to_string(bytes.size() - 20) + " payload bytes, the file has " +
-                                                std::to_string(bytes.size() - 19));
+    EXPECT_EQ(decoded(bytes + "x").problem,
+              "trailing bytes: the header announces " + std::to_string(bytes.size() - 20) +
+                  " payload bytes, the file has " + std::to_string(bytes.size() - 19));
 }
 
-TEST(AamModelFile, EveryFlippedPayloadBitIsCorrupt) {
+TEST(AamModelFile, EveryFlippedPayloadBitIsCorrupt)
+{
     const std::string bytes = vision::encodeAamModel(tinyModel());
     for (std::size_t i = 20; i < bytes.size(); ++i) {
         for (int bit = 0; bit < 8; bit += 3) {
@@ -86,12 +91,14 @@ TEST(AamModelFile, EveryFlippedPayloadBitIsCorrupt) {
             flipped[i] = static_cast<char>(flipped[i] ^ (1 << bit));
             const vision::AamModelFile f = decoded(flipped);
             ASSERT_FALSE(f.ok);
-            EXPECT_EQ(f.problem.rfind("corrupt: the payload's CRC-32 is 0x", 0), 0u) << i << ": " << f.problem;
+            EXPECT_EQ(f.problem.rfind("corrupt: the payload's CRC-32 is 0x", 0), 0u)
+                << i << ": " << f.problem;
         }
     }
 }
 
-TEST(AamModelFile, ForeignAndNewerFilesAreNamed) {
+TEST(AamModelFile, ForeignAndNewerFilesAreNamed)
+{
     std::string bytes = vision::encodeAamModel(tinyModel());
     std::string foreign = bytes;
     foreign[0] = 'X';
@@ -100,17 +107,20 @@ TEST(AamModelFile, ForeignAndNewerFilesAreNamed) {
     EXPECT_EQ(decoded(bytes).problem, "model format version 2; this build reads version 1");
 }
 
-TEST(AamModelFile, AChecksummedButInconsistentPayloadIsMalformed) {
+TEST(AamModelFile, AChecksummedButInconsistentPayloadIsMalformed)
+{
     // A faulty writer: a triangle naming vertex 3 of 3, checksum recomputed.
     std::string bytes = vision::encodeAamModel(tinyModel());
     const std::size_t triangles = 20 + 9 * 4 + 3 * 16;
     bytes[triangles + 4] = 3;
-    const std::uint32_t sum = vision::crc32(std::as_bytes(std::span(bytes.data() + 20, bytes.size() - 20)));
+    const std::uint32_t sum =
+        vision::crc32(std::as_bytes(std::span(bytes.data() + 20, bytes.size() - 20)));
     std::memcpy(bytes.data() + 16, &sum, 4);
     EXPECT_EQ(decoded(bytes).problem, "malformed: triangle 0 uses vertex 3 of 3");
 }
 
-TEST(AamModelFile, RandomPayloadsWithAGoodChecksumNeverReadOutOfBounds) {
+TEST(AamModelFile, RandomPayloadsWithAGoodChecksumNeverReadOutOfBounds)
+{
     // A faulty writer's payloads: random bytes changed, the checksum made to match. Each is read
     // or refused as malformed; none crashes (the sanitizer build runs this too).
     const std::string good = vision::encodeAamModel(tinyModel());
@@ -122,7 +132,8 @@ TEST(AamModelFile, RandomPayloadsWithAGoodChecksumNeverReadOutOfBounds) {
             const std::size_t at = 20 + random() % (bytes.size() - 20);
             bytes[at] = static_cast<char>(random() & 0xFF);
         }
-        const std::uint32_t sum = vision::crc32(std::as_bytes(std::span(bytes.data() + 20, bytes.size() - 20)));
+        const std::uint32_t sum =
+            vision::crc32(std::as_bytes(std::span(bytes.data() + 20, bytes.size() - 20)));
         std::memcpy(bytes.data() + 16, &sum, 4);
         const vision::AamModelFile f = decoded(bytes);
         if (!f.ok) {
@@ -131,19 +142,22 @@ TEST(AamModelFile, RandomPayloadsWithAGoodChecksumNeverReadOutOfBounds) {
     }
 }
 
-TEST(AamModelFile, AModelWhosePartsDisagreeIsNotWritten) {
+TEST(AamModelFile, AModelWhosePartsDisagreeIsNotWritten)
+{
     vision::AamModel m = tinyModel();
     m.appearanceModes.pop_back();
     EXPECT_THROW(vision::encodeAamModel(m), std::invalid_argument);
 }
 
-TEST(AamModelFile, AMissingFileIsOneLineWithItsPath) {
+TEST(AamModelFile, AMissingFileIsOneLineWithItsPath)
+{
     const vision::AamModelFile f = vision::loadAamModel("/nonexistent/face.aam");
     EXPECT_FALSE(f.ok);
     EXPECT_EQ(f.problem, "/nonexistent/face.aam: cannot read file: No such file or directory");
 }
 
-TEST(AamModelFile, LoadsAWrittenFile) {
+TEST(AamModelFile, LoadsAWrittenFile)
+{
     const std::string path = testing_support::freshOutputDir("aam_model_file") + "/tiny.aam";
     std::ofstream(path, std::ios::binary) << vision::encodeAamModel(tinyModel());
     const vision::AamModelFile f = vision::loadAamModel(path);

@@ -20,27 +20,33 @@ class AnnotationLines {
 public:
     AnnotationLines(std::istream& in, std::string name) : in_(in), name_(std::move(name)) {}
 
-    std::optional<std::vector<std::string>> next() {
+    std::optional<std::vector<std::string>> next()
+    {
         std::string line;
         while (std::getline(in_, line)) {
             ++number_;
             const auto start = line.find_first_not_of(" \t\r");
-            if (start == std::string::npos || line[start] == '#') continue;
+            if (start == std::string::npos || line[start] == '#')
+                continue;
             std::istringstream fields(line);
             std::vector<std::string> out;
-            for (std::string f; fields >> f;) out.push_back(f);
+            for (std::string f; fields >> f;)
+                out.push_back(f);
             return out;
         }
         return std::nullopt;
     }
 
-    std::vector<std::string> expect(const std::string& what) {
+    std::vector<std::string> expect(const std::string& what)
+    {
         auto fields = next();
-        if (!fields) fail("file ends where " + what + " was expected");
+        if (!fields)
+            fail("file ends where " + what + " was expected");
         return *fields;
     }
 
-    [[noreturn]] void fail(const std::string& what) const {
+    [[noreturn]] void fail(const std::string& what) const
+    {
         throw AnnotationError(name_ + ":" + std::to_string(number_) + ": " + what);
     }
 
@@ -50,88 +56,111 @@ private:
     int number_ = 0;
 };
 
-std::string joined(const std::vector<std::string>& fields) {
+std::string joined(const std::vector<std::string>& fields)
+{
     std::string s;
-    for (const auto& f : fields) s += (s.empty() ? "" : " ") + f;
+    for (const auto& f : fields)
+        s += (s.empty() ? "" : " ") + f;
     return s;
 }
 
 template <typename T>
-T parsed(AnnotationLines& lines, const std::string& text, const std::string& what) {
+T parsed(AnnotationLines& lines, const std::string& text, const std::string& what)
+{
     T value{};
     const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
     if (ec != std::errc() || end != text.data() + text.size()) {
-        lines.fail(what + ": \"" + text + "\" is not " + (std::is_integral_v<T> ? "an integer" : "a number"));
+        lines.fail(what + ": \"" + text + "\" is not " +
+                   (std::is_integral_v<T> ? "an integer" : "a number"));
     }
     return value;
 }
 
-long pointCount(AnnotationLines& lines, const std::vector<std::string>& fields, std::size_t at) {
+long pointCount(AnnotationLines& lines, const std::vector<std::string>& fields, std::size_t at)
+{
     const long n = parsed<long>(lines, fields[at], "the point count");
-    if (n <= 0 || n > kMaxPoints) lines.fail("the point count " + fields[at] + " is out of range");
+    if (n <= 0 || n > kMaxPoints)
+        lines.fail("the point count " + fields[at] + " is out of range");
     return n;
 }
 
-Eigen::Vector2d asfPoint(AnnotationLines& lines, long i, long n, int width, int height) {
+Eigen::Vector2d asfPoint(AnnotationLines& lines, long i, long n, int width, int height)
+{
     const std::string what = "point " + std::to_string(i) + " of " + std::to_string(n);
     const auto f = lines.expect(what);
     // 41 of IMM's files append three numbers (0.00) to each point, as later AAM-API versions write.
     if (f.size() != 7 && f.size() != 10) {
-        lines.fail(what + ": expected 7 fields \"path type x y point from to\", got \"" + joined(f) + "\"");
+        lines.fail(what + ": expected 7 fields \"path type x y point from to\", got \"" +
+                   joined(f) + "\"");
     }
     const double x = parsed<double>(lines, f[2], what);
     const double y = parsed<double>(lines, f[3], what);
-    if (parsed<long>(lines, f[4], what) != i) lines.fail(what + ": numbered " + f[4]);
-    if (!(x >= 0 && x <= 1 && y >= 0 && y <= 1)) lines.fail(what + ": relative coordinates outside [0, 1]");
+    if (parsed<long>(lines, f[4], what) != i)
+        lines.fail(what + ": numbered " + f[4]);
+    if (!(x >= 0 && x <= 1 && y >= 0 && y <= 1))
+        lines.fail(what + ": relative coordinates outside [0, 1]");
     return {x * width, y * height};
 }
 
 }  // namespace
 
-Annotation readAsf(std::istream& in, const std::string& name, int imageWidth, int imageHeight) {
+Annotation readAsf(std::istream& in, const std::string& name, int imageWidth, int imageHeight)
+{
     AnnotationLines lines(in, name);
     const auto countLine = lines.expect("the point count");
-    if (countLine.size() != 1) lines.fail("expected the point count, got \"" + joined(countLine) + "\"");
+    if (countLine.size() != 1)
+        lines.fail("expected the point count, got \"" + joined(countLine) + "\"");
     const long n = pointCount(lines, countLine, 0);
     Annotation a;
-    for (long i = 0; i < n; ++i) a.points.push_back(asfPoint(lines, i, n, imageWidth, imageHeight));
+    for (long i = 0; i < n; ++i)
+        a.points.push_back(asfPoint(lines, i, n, imageWidth, imageHeight));
     const auto host = lines.expect("the host image's file name");
-    if (host.size() != 1) lines.fail("expected the host image's file name, got \"" + joined(host) + "\"");
+    if (host.size() != 1)
+        lines.fail("expected the host image's file name, got \"" + joined(host) + "\"");
     a.hostImage = host[0];
-    if (const auto extra = lines.next()) lines.fail("unexpected data after the host image: \"" + joined(*extra) + "\"");
+    if (const auto extra = lines.next())
+        lines.fail("unexpected data after the host image: \"" + joined(*extra) + "\"");
     return a;
 }
 
-Annotation readPts(std::istream& in, const std::string& name) {
+Annotation readPts(std::istream& in, const std::string& name)
+{
     AnnotationLines lines(in, name);
     const auto version = lines.expect("\"version: 1\"");
     if (version.size() != 2 || version[0] != "version:" || version[1] != "1") {
         lines.fail("expected \"version: 1\", got \"" + joined(version) + "\"");
     }
     const auto count = lines.expect("\"n_points: N\"");
-    if (count.size() != 2 || count[0] != "n_points:") lines.fail("expected \"n_points: N\", got \"" + joined(count) + "\"");
+    if (count.size() != 2 || count[0] != "n_points:")
+        lines.fail("expected \"n_points: N\", got \"" + joined(count) + "\"");
     const long n = pointCount(lines, count, 1);
-    if (lines.expect("\"{\"") != std::vector<std::string>{"{"}) lines.fail("expected \"{\" before the points");
+    if (lines.expect("\"{\"") != std::vector<std::string>{"{"})
+        lines.fail("expected \"{\" before the points");
     Annotation a;
     for (long i = 0; i < n; ++i) {
         const std::string what = "point " + std::to_string(i) + " of " + std::to_string(n);
         const auto f = lines.expect(what);
-        if (f.size() != 2) lines.fail(what + ": expected \"x y\", got \"" + joined(f) + "\"");
+        if (f.size() != 2)
+            lines.fail(what + ": expected \"x y\", got \"" + joined(f) + "\"");
         a.points.emplace_back(parsed<double>(lines, f[0], what), parsed<double>(lines, f[1], what));
     }
     const auto close = lines.expect("\"}\" after " + std::to_string(n) + " points");
     if (close != std::vector<std::string>{"}"}) {
-        lines.fail("expected \"}\" after " + std::to_string(n) + " points, got \"" + joined(close) + "\"");
+        lines.fail("expected \"}\" after " + std::to_string(n) + " points, got \"" + joined(close) +
+                   "\"");
     }
-    if (const auto extra = lines.next()) lines.fail("unexpected data after \"}\": \"" + joined(*extra) + "\"");
+    if (const auto extra = lines.next())
+        lines.fail("unexpected data after \"}\": \"" + joined(*extra) + "\"");
     return a;
 }
 
 namespace {
 
 /// The file's text, read through readBoundedFile (limits::kAnnotationBytes).
-std::istringstream annotationText(const std::string& path) {
-    const vision::BoundedFile file = vision::readBoundedFile(path, vision::limits::kAnnotationBytes);
+std::istringstream annotationText(const std::string& path)
+{
+    const vision::BoundedFile file =
+        vision::readBoundedFile(path, vision::limits::kAnnotationBytes);
     if (file.status != vision::BoundedFile::Status::Ok) {
         throw AnnotationError(path + ": cannot read the annotation file: " + file.problem);
     }
@@ -140,23 +169,28 @@ std::istringstream annotationText(const std::string& path) {
 
 }  // namespace
 
-Annotation loadAsf(const std::string& path, int imageWidth, int imageHeight) {
+Annotation loadAsf(const std::string& path, int imageWidth, int imageHeight)
+{
     std::istringstream in = annotationText(path);
     return readAsf(in, path, imageWidth, imageHeight);
 }
 
-Annotation loadPts(const std::string& path) {
+Annotation loadPts(const std::string& path)
+{
     std::istringstream in = annotationText(path);
     return readPts(in, path);
 }
 
-Annotation loadAnnotation(const std::string& path) {
+Annotation loadAnnotation(const std::string& path)
+{
     return path.ends_with(".asf") ? loadAsf(path) : loadPts(path);
 }
 
-void writePts(std::ostream& out, const std::vector<Eigen::Vector2d>& points) {
+void writePts(std::ostream& out, const std::vector<Eigen::Vector2d>& points)
+{
     out << "version: 1\nn_points: " << points.size() << "\n{\n" << std::setprecision(9);
-    for (const auto& p : points) out << p.x() << ' ' << p.y() << '\n';
+    for (const auto& p : points)
+        out << p.x() << ' ' << p.y() << '\n';
     out << "}\n";
 }
 

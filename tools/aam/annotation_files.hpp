@@ -11,7 +11,6 @@
 // one line, "PATH:LINE: what was wrong".
 
 #include <Eigen/Core>
-
 #include <istream>
 #include <stdexcept>
 #include <string>
@@ -36,7 +35,8 @@ inline constexpr int kImmImageHeight = 480;
 
 Annotation readAsf(std::istream& in, const std::string& name, int imageWidth = kImmImageWidth,
                    int imageHeight = kImmImageHeight);
-Annotation loadAsf(const std::string& path, int imageWidth = kImmImageWidth, int imageHeight = kImmImageHeight);
+Annotation loadAsf(const std::string& path, int imageWidth = kImmImageWidth,
+                   int imageHeight = kImmImageHeight);
 
 Annotation readPts(std::istream& in, const std::string& name);
 Annotation loadPts(const std::string& path);

@@ -11,11 +11,9 @@
 // `aam-build draw --scheme`.
 
 #include "annotation_files.hpp"
-
 #include "vision/candide_mesh.hpp"
 
 #include <Eigen/Core>
-
 #include <array>
 #include <span>
 #include <string_view>

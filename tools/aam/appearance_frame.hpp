@@ -9,11 +9,9 @@
 // docs/aam-model-format.md for the choice). Pixels are sampled at their integer coordinates.
 
 #include "shape_synthesis.hpp"
-
 #include "vision/candide_mesh.hpp"
 
 #include <Eigen/Core>
-
 #include <vector>
 
 namespace aam {
@@ -26,13 +24,16 @@ struct FramePixel {
 
 struct AppearanceFrame {
     int width = 0, height = 0;
-    double scale = 1;                           ///< frame pixels per unit of the aligned shapes
+    double scale = 1;                               ///< frame pixels per unit of the aligned shapes
     Eigen::Vector2d low = Eigen::Vector2d::Zero();  ///< the aligned mean's bounding-box corner
-    Shape2d meanShape;                          ///< s0 in frame pixels
-    std::vector<FramePixel> pixels;             ///< row by row, left to right
+    Shape2d meanShape;                              ///< s0 in frame pixels
+    std::vector<FramePixel> pixels;                 ///< row by row, left to right
 
     /// A point of the aligned shapes' frame in frame pixels.
-    Eigen::Vector2d toFrame(const Eigen::Vector2d& aligned) const { return (aligned - low) * scale + Eigen::Vector2d(1, 1); }
+    Eigen::Vector2d toFrame(const Eigen::Vector2d& aligned) const
+    {
+        return (aligned - low) * scale + Eigen::Vector2d(1, 1);
+    }
 };
 
 /// The frame `width` pixels across for the aligned mean shape `mean` (of `face`'s vertices).

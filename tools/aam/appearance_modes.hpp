@@ -10,7 +10,6 @@
 //    than pixels the modes come from the images' small Gram matrix (the same eigenvectors).
 
 #include <Eigen/Core>
-
 #include <vector>
 
 namespace aam {
@@ -27,21 +26,22 @@ GainBias gainBiasOnto(const Eigen::VectorXd& a, const Eigen::VectorXd& b);
 Eigen::VectorXd standardised(const Eigen::VectorXd& v);
 
 struct AppearanceModes {
-    Eigen::VectorXd mean;      ///< A0: zero mean, unit variance
-    Eigen::MatrixXd modes;     ///< pixels x m, orthonormal columns A_i
-    Eigen::VectorXd variances; ///< of each kept mode, largest first
-    double totalVariance = 0;  ///< of all modes
-    int iterations = 0;        ///< of the mean's estimate
+    Eigen::VectorXd mean;       ///< A0: zero mean, unit variance
+    Eigen::MatrixXd modes;      ///< pixels x m, orthonormal columns A_i
+    Eigen::VectorXd variances;  ///< of each kept mode, largest first
+    double totalVariance = 0;   ///< of all modes
+    int iterations = 0;         ///< of the mean's estimate
 };
 
 /// The model of the warped training images (at least two, one size); throws std::invalid_argument
 /// (one line) for fewer, for a fraction outside (0, 1] or for a flat image.
-AppearanceModes appearanceModes(const std::vector<Eigen::VectorXd>& warped, double varianceFraction = 0.95);
+AppearanceModes appearanceModes(const std::vector<Eigen::VectorXd>& warped,
+                                double varianceFraction = 0.95);
 
 struct AppearanceResidual {
     double rms = 0;          ///< of the image matched to the mean, less its projection on the modes
     double rmsMeanOnly = 0;  ///< the same with no modes
-    double alpha = 1;        ///< the gain that matched it: rms / alpha is in the image's grey levels
+    double alpha = 1;  ///< the gain that matched it: rms / alpha is in the image's grey levels
 };
 
 /// How well `model` reconstructs the warped image `warped` (normalised units: the mean's

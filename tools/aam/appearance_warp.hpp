@@ -13,8 +13,8 @@ namespace aam {
 
 /// `grey` (8-bit) sampled at each frame pixel's place in `shape` (the face's vertices in `grey`,
 /// pixels); a place outside the image takes the nearest border pixel. One value per frame pixel.
-Eigen::VectorXd warpToFrame(const cv::Mat& grey, const Shape2d& shape, const vision::CandideMesh& face,
-                            const AppearanceFrame& frame);
+Eigen::VectorXd warpToFrame(const cv::Mat& grey, const Shape2d& shape,
+                            const vision::CandideMesh& face, const AppearanceFrame& frame);
 
 /// `values` (one per frame pixel) as a frame-sized CV_64F image, 0 outside the face.
 cv::Mat frameImage(const AppearanceFrame& frame, const Eigen::VectorXd& values);
@@ -22,6 +22,7 @@ cv::Mat frameImage(const AppearanceFrame& frame, const Eigen::VectorXd& values);
 /// `values` of frame `from` resampled at the pixels of `to` (the same mean shape at another
 /// resolution), bilinearly over the pixels of `from` only: what a model of `from`'s resolution
 /// can show at `to`'s. NaN where no pixel of `from` lies within one pixel (the outline's edge).
-Eigen::VectorXd resampledTo(const AppearanceFrame& from, const Eigen::VectorXd& values, const AppearanceFrame& to);
+Eigen::VectorXd resampledTo(const AppearanceFrame& from, const Eigen::VectorXd& values,
+                            const AppearanceFrame& to);
 
 }  // namespace aam

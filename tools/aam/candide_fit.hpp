@@ -8,15 +8,13 @@
 // solves for k R(phi) sigma as if it were sigma: exact only at k = 1, phi = 0. We solve it so for a
 // start, then alternate the two problems that are each linear: the similarity (t, a, b) with the
 // units fixed, and the units with the similarity fixed (their displacements scaled and rotated by
-// it), a few rounds. Where the text is silent: a weak prior on the unit parameters (ridge) keeps the
-// units the marked points cannot see (a unit acting only on unmarked vertices) at 0.
+// it), a few rounds. Where the text is silent: a weak prior on the unit parameters (ridge) keeps
+// the units the marked points cannot see (a unit acting only on unmarked vertices) at 0.
 
 #include "annotation_schemes.hpp"
-
 #include "vision/candide_mesh.hpp"
 
 #include <Eigen/Core>
-
 #include <vector>
 
 namespace aam {
@@ -31,15 +29,15 @@ struct CandideFitOptions {
 
 struct CandideFit {
     Eigen::Vector2d translation = Eigen::Vector2d::Zero();  ///< image pixels
-    double a = 1;  ///< k cos phi
-    double b = 0;  ///< k sin phi
-    std::vector<float> sigma;  ///< one per shape unit of the mesh
-    std::vector<float> tau;    ///< one per animation unit of the mesh
-    double rmsResidualPx = 0;  ///< over the marked points
+    double a = 1;                                           ///< k cos phi
+    double b = 0;                                           ///< k sin phi
+    std::vector<float> sigma;                               ///< one per shape unit of the mesh
+    std::vector<float> tau;                                 ///< one per animation unit of the mesh
+    double rmsResidualPx = 0;                               ///< over the marked points
     double maxResidualPx = 0;
 
-    double scale() const;         ///< k, pixels per model unit
-    double rollRadians() const;   ///< phi, counter-clockwise in the image as seen (y down)
+    double scale() const;        ///< k, pixels per model unit
+    double rollRadians() const;  ///< phi, counter-clockwise in the image as seen (y down)
 };
 
 /// Fits `face` to the marked points (at least as many coordinates as unknowns, 4 + units);
@@ -48,7 +46,8 @@ CandideFit fitCandide(const vision::CandideMesh& face, const std::vector<MarkedP
                       const CandideFitOptions& options = {});
 
 /// Every vertex of `face` in the image under `fit` (the orthographic projection of eq. 44).
-std::vector<Eigen::Vector2d> projectedVertices(const vision::CandideMesh& face, const CandideFit& fit);
+std::vector<Eigen::Vector2d> projectedVertices(const vision::CandideMesh& face,
+                                               const CandideFit& fit);
 
 /// The image point of model point (x, y) under the similarity (t, a, b): CANDIDE's y is up, the
 /// image's down.

@@ -14,21 +14,19 @@
 #include "candide_fit.hpp"
 #include "shape_alignment.hpp"
 #include "shape_modes.hpp"
-
 #include "vision/aam_model.hpp"
 #include "vision/candide_mesh.hpp"
 
 #include <opencv2/core.hpp>
-
 #include <string>
 #include <vector>
 
 namespace aam {
 
 struct ModelOptions {
-    int resolution = 96;                ///< the appearance frame's width (docs/aam-model-format.md: why)
-    double shapeVariance = 0.98;        ///< shape_modes.hpp
-    double appearanceVariance = 0.95;   ///< docs/aam-model-format.md: why
+    int resolution = 96;          ///< the appearance frame's width (docs/aam-model-format.md: why)
+    double shapeVariance = 0.98;  ///< shape_modes.hpp
+    double appearanceVariance = 0.95;  ///< docs/aam-model-format.md: why
     SynthesisOptions synthesis;
 };
 
@@ -41,11 +39,13 @@ struct FittedImage {
 };
 
 /// Reads the annotation and its image and fits `face` to the marks (5.3.1, eq. 44).
-FittedImage fitAnnotatedImage(const vision::CandideMesh& face, const AnnotationScheme& scheme, const std::string& path);
+FittedImage fitAnnotatedImage(const vision::CandideMesh& face, const AnnotationScheme& scheme,
+                              const std::string& path);
 
 /// Every fit's synthesized shapes (each its own seed from `synthesis.seed` on), aligned in the
 /// frame of the first fit's frontal neutral shape (shape_alignment.hpp: so the mean is upright).
-AlignedShapes alignedTrainingShapes(const vision::CandideMesh& face, const std::vector<CandideFit>& fits,
+AlignedShapes alignedTrainingShapes(const vision::CandideMesh& face,
+                                    const std::vector<CandideFit>& fits,
                                     SynthesisOptions synthesis);
 
 struct BuiltModel {
@@ -58,7 +58,8 @@ struct BuiltModel {
 };
 
 /// The model of the training images (at least two); one-line std::exceptions for bad input.
-BuiltModel buildModel(const vision::CandideMesh& face, const std::vector<FittedImage>& training, const ModelOptions& options);
+BuiltModel buildModel(const vision::CandideMesh& face, const std::vector<FittedImage>& training,
+                      const ModelOptions& options);
 
 /// The model as the file holds it: the mean shape and modes in frame pixels.
 vision::AamModel modelForFile(const BuiltModel& built);

@@ -27,17 +27,20 @@ struct HeldOutResult {
     double shapeRmsPx = 0, shapeMeanOnlyRmsPx = 0;
     double appearanceRms = 0, appearanceMeanOnlyRms = 0;  ///< grey levels
     double appearanceRmsAtReference = 0;                  ///< grey levels, at 256 px
-    double resolutionLoss = 0;  ///< grey levels at 256 px: the image's own warp at the model's resolution, shown at 256
+    double resolutionLoss =
+        0;  ///< grey levels at 256 px: the image's own warp at the model's resolution, shown at 256
 };
 
 /// Throws std::invalid_argument (one line) naming the first of `heldOutPaths` whose person
 /// (personOf) is one of `trainingPersons`: checked before a model is built, and again by
 /// evaluateHeldOut.
-void refuseSeenPersons(const std::vector<std::string>& trainingPersons, const std::vector<std::string>& heldOutPaths);
+void refuseSeenPersons(const std::vector<std::string>& trainingPersons,
+                       const std::vector<std::string>& heldOutPaths);
 
 /// Each image of `heldOut` reconstructed by `model`. Throws std::invalid_argument (one line)
 /// naming the first image whose person the model saw, unless `personSpecific`.
-std::vector<HeldOutResult> evaluateHeldOut(const BuiltModel& model, const std::vector<FittedImage>& heldOut,
+std::vector<HeldOutResult> evaluateHeldOut(const BuiltModel& model,
+                                           const std::vector<FittedImage>& heldOut,
                                            bool personSpecific);
 
 }  // namespace aam

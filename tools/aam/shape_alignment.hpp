@@ -1,7 +1,8 @@
 #pragma once
 // The shapes aligned before their PCA (§5, dissertation 5.3.1 after Cootes et al.): weighted
 // Procrustes, so the shape modes capture shape, not scale, translation or roll.
-//  - eq. 45: vertex k's weight w_k = (sum_j V(R_kj))^-1, R_kj the distance between vertices k and j,
+//  - eq. 45: vertex k's weight w_k = (sum_j V(R_kj))^-1, R_kj the distance between vertices k and
+//  j,
 //    V its variance over the set: steady vertices count more;
 //  - eqs. 46-53: the similarity (ax, ay) = s (cos phi, sin phi), t taking one shape onto another in
 //    weighted least squares, a 4x4 linear system;
@@ -11,7 +12,6 @@
 #include "shape_synthesis.hpp"
 
 #include <Eigen/Core>
-
 #include <vector>
 
 namespace aam {
@@ -27,7 +27,8 @@ struct Similarity2d {
 };
 
 /// Eq. 47: the similarity taking `moving` onto `target` with vertex weights `w`.
-Similarity2d alignSimilarity(const Shape2d& target, const Shape2d& moving, const Eigen::VectorXd& w);
+Similarity2d alignSimilarity(const Shape2d& target, const Shape2d& moving,
+                             const Eigen::VectorXd& w);
 
 struct AlignedShapes {
     std::vector<Shape2d> shapes;  ///< in the first shape's (or the reference's) frame

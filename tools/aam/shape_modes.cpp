@@ -3,7 +3,6 @@
 #include "shape_modes.hpp"
 
 #include <Eigen/Eigenvalues>
-
 #include <stdexcept>
 #include <string>
 
@@ -11,24 +10,29 @@ namespace aam {
 
 namespace {
 
-Eigen::VectorXd asVector(const Shape2d& shape) {
+Eigen::VectorXd asVector(const Shape2d& shape)
+{
     Eigen::VectorXd v(2 * static_cast<Eigen::Index>(shape.size()));
-    for (std::size_t k = 0; k < shape.size(); ++k) v.segment<2>(2 * static_cast<Eigen::Index>(k)) = shape[k];
+    for (std::size_t k = 0; k < shape.size(); ++k)
+        v.segment<2>(2 * static_cast<Eigen::Index>(k)) = shape[k];
     return v;
 }
 
-Eigen::MatrixXd covarianceAbout(const std::vector<Shape2d>& shapes, const Eigen::VectorXd& mean) {
+Eigen::MatrixXd covarianceAbout(const std::vector<Shape2d>& shapes, const Eigen::VectorXd& mean)
+{
     Eigen::MatrixXd deltas(mean.size(), static_cast<Eigen::Index>(shapes.size()));
-    for (std::size_t i = 0; i < shapes.size(); ++i) deltas.col(static_cast<Eigen::Index>(i)) = asVector(shapes[i]) - mean;
+    for (std::size_t i = 0; i < shapes.size(); ++i)
+        deltas.col(static_cast<Eigen::Index>(i)) = asVector(shapes[i]) - mean;
     return deltas * deltas.transpose() / static_cast<double>(shapes.size());
 }
 
 }  // namespace
 
-ShapeModes shapeModes(const AlignedShapes& aligned, double varianceFraction) {
+ShapeModes shapeModes(const AlignedShapes& aligned, double varianceFraction)
+{
     if (!(varianceFraction > 0 && varianceFraction <= 1)) {
-        throw std::invalid_argument("shape modes: variance fraction " + std::to_string(varianceFraction) +
-                                    " is not in (0, 1]");
+        throw std::invalid_argument("shape modes: variance fraction " +
+                                    std::to_string(varianceFraction) + " is not in (0, 1]");
     }
     const Eigen::VectorXd mean = asVector(aligned.mean);
     const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> pca(covarianceAbout(aligned.shapes, mean));
@@ -37,7 +41,8 @@ ShapeModes shapeModes(const AlignedShapes& aligned, double varianceFraction) {
     ShapeModes out{aligned.mean, {}, {}, values.sum()};
     Eigen::Index kept = 0;
     double reached = 0;
-    while (kept < values.size() && (kept == 0 || reached < varianceFraction * out.totalVariance)) reached += values(kept++);
+    while (kept < values.size() && (kept == 0 || reached < varianceFraction * out.totalVariance))
+        reached += values(kept++);
     out.modes = pca.eigenvectors().rowwise().reverse().leftCols(kept);
     out.variances = values.head(kept);
     return out;

@@ -12,10 +12,10 @@
 namespace aam {
 
 struct ShapeModes {
-    Shape2d mean;                ///< s0
-    Eigen::MatrixXd modes;       ///< 2n x m, orthonormal columns s_i, (x0 y0 x1 y1 ...) as eq. 41
-    Eigen::VectorXd variances;   ///< of each kept mode, largest first
-    double totalVariance = 0;    ///< of all modes
+    Shape2d mean;               ///< s0
+    Eigen::MatrixXd modes;      ///< 2n x m, orthonormal columns s_i, (x0 y0 x1 y1 ...) as eq. 41
+    Eigen::VectorXd variances;  ///< of each kept mode, largest first
+    double totalVariance = 0;   ///< of all modes
 };
 
 /// Throws std::invalid_argument (one line) for a fraction outside (0, 1].

@@ -3,7 +3,6 @@
 #include "shape_synthesis.hpp"
 
 #include <Eigen/Geometry>
-
 #include <cmath>
 #include <random>
 #include <stdexcept>
@@ -11,9 +10,11 @@
 namespace aam {
 
 Shape2d posedShape(const vision::CandideMesh& face, const CandideFit& fit, double yaw, double pitch,
-                   const std::vector<float>& tau) {
+                   const std::vector<float>& tau)
+{
     const Eigen::Matrix3d turn = (Eigen::AngleAxisd(pitch, Eigen::Vector3d::UnitX()) *
-                                  Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitY())).toRotationMatrix();
+                                  Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitY()))
+                                     .toRotationMatrix();
     Shape2d shape;
     shape.reserve(face.vertices.size());
     for (const Eigen::Vector3f& v : vision::deformedVertices(face, fit.sigma, tau)) {
@@ -24,10 +25,12 @@ Shape2d posedShape(const vision::CandideMesh& face, const CandideFit& fit, doubl
 }
 
 std::vector<Shape2d> synthesizeShapes(const vision::CandideMesh& face, const CandideFit& fit,
-                                      const SynthesisOptions& options) {
+                                      const SynthesisOptions& options)
+{
     if (face.animationUnits.size() != kAnimationRange.size()) {
-        throw std::invalid_argument("shape synthesis: the mesh has " + std::to_string(face.animationUnits.size()) +
-                                    " animation units, the ranges are for " + std::to_string(kAnimationRange.size()));
+        throw std::invalid_argument(
+            "shape synthesis: the mesh has " + std::to_string(face.animationUnits.size()) +
+            " animation units, the ranges are for " + std::to_string(kAnimationRange.size()));
     }
     constexpr double kRadiansPerDegree = 3.14159265358979323846 / 180.0;
     std::mt19937 random(options.seed);
@@ -39,7 +42,8 @@ std::vector<Shape2d> synthesizeShapes(const vision::CandideMesh& face, const Can
     std::vector<float> tau(kAnimationRange.size());
     for (int i = 0; i < options.shapesPerImage; ++i) {
         for (std::size_t j = 0; j < tau.size(); ++j) {
-            tau[j] = std::uniform_real_distribution<float>(kAnimationRange[j].low, kAnimationRange[j].high)(random);
+            tau[j] = std::uniform_real_distribution<float>(kAnimationRange[j].low,
+                                                           kAnimationRange[j].high)(random);
         }
         const double y = yaw(random);
         shapes.push_back(posedShape(face, fit, y, pitch(random), tau));

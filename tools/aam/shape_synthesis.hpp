@@ -11,11 +11,9 @@
 // fit's own: orthographic, scaled, rolled and translated as fitted.
 
 #include "candide_fit.hpp"
-
 #include "vision/candide_mesh.hpp"
 
 #include <Eigen/Core>
-
 #include <array>
 #include <cstdint>
 #include <vector>
@@ -27,12 +25,12 @@ struct UnitRange {
     float low, high;
 };
 inline constexpr std::array<UnitRange, 6> kAnimationRange{{
-    {0.f, 1.f},     // jaw drop: closed to wide open
-    {-0.5f, 1.f},   // lip stretcher
-    {-1.f, 1.f},    // brow lowerer (negative: raised)
-    {-0.5f, 1.f},   // outer brow raiser
-    {-0.5f, 1.f},   // upper lip raiser
-    {-1.f, 1.f},    // lip corner depressor (negative: corners up)
+    {0.f, 1.f},    // jaw drop: closed to wide open
+    {-0.5f, 1.f},  // lip stretcher
+    {-1.f, 1.f},   // brow lowerer (negative: raised)
+    {-0.5f, 1.f},  // outer brow raiser
+    {-0.5f, 1.f},  // upper lip raiser
+    {-1.f, 1.f},   // lip corner depressor (negative: corners up)
 }};
 
 struct SynthesisOptions {

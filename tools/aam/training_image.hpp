@@ -6,7 +6,6 @@
 #include "annotation_files.hpp"
 
 #include <opencv2/core.hpp>
-
 #include <string>
 
 namespace aam {

@@ -22,42 +22,50 @@ public:
     WfmLines(std::istream& in, std::string name) : in_(in), name_(std::move(name)) {}
 
     /// The next data line split into fields, or nothing at the end of the file.
-    std::optional<std::vector<std::string>> next() {
+    std::optional<std::vector<std::string>> next()
+    {
         std::string line;
         comment_.clear();
         bool sawComment = false;
         while (std::getline(in_, line)) {
             ++number_;
             const auto start = line.find_first_not_of(" \t\r");
-            if (start == std::string::npos) continue;
+            if (start == std::string::npos)
+                continue;
             if (line[start] == '#') {
-                if (!sawComment) comment_ = trimmed(line.substr(start + 1));
+                if (!sawComment)
+                    comment_ = trimmed(line.substr(start + 1));
                 sawComment = true;
                 continue;
             }
             std::istringstream fields(line);
             std::vector<std::string> out;
-            for (std::string f; fields >> f;) out.push_back(f);
+            for (std::string f; fields >> f;)
+                out.push_back(f);
             return out;
         }
         return std::nullopt;
     }
 
     /// The next data line, which must exist: `what` says what was expected.
-    std::vector<std::string> expect(const std::string& what) {
+    std::vector<std::string> expect(const std::string& what)
+    {
         auto fields = next();
-        if (!fields) fail("file ends where " + what + " was expected");
+        if (!fields)
+            fail("file ends where " + what + " was expected");
         return *fields;
     }
 
-    [[noreturn]] void fail(const std::string& what) const {
+    [[noreturn]] void fail(const std::string& what) const
+    {
         throw WfmError(name_ + ":" + std::to_string(number_) + ": " + what);
     }
 
     const std::string& comment() const noexcept { return comment_; }
 
 private:
-    static std::string trimmed(const std::string& s) {
+    static std::string trimmed(const std::string& s)
+    {
         const auto a = s.find_first_not_of(" \t\r");
         const auto b = s.find_last_not_of(" \t\r");
         return a == std::string::npos ? std::string() : s.substr(a, b - a + 1);
@@ -69,55 +77,73 @@ private:
     std::string comment_;
 };
 
-std::string joined(const std::vector<std::string>& fields) {
+std::string joined(const std::vector<std::string>& fields)
+{
     std::string s;
-    for (const auto& f : fields) s += (s.empty() ? "" : " ") + f;
+    for (const auto& f : fields)
+        s += (s.empty() ? "" : " ") + f;
     return s;
 }
 
-long toInt(WfmLines& lines, const std::string& text, const std::string& what) {
+long toInt(WfmLines& lines, const std::string& text, const std::string& what)
+{
     long value = 0;
     const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
-    if (ec != std::errc() || end != text.data() + text.size()) lines.fail(what + ": \"" + text + "\" is not an integer");
+    if (ec != std::errc() || end != text.data() + text.size())
+        lines.fail(what + ": \"" + text + "\" is not an integer");
     return value;
 }
 
-float toFloat(WfmLines& lines, const std::string& text, const std::string& what) {
+float toFloat(WfmLines& lines, const std::string& text, const std::string& what)
+{
     float value = 0;
     const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
-    if (ec != std::errc() || end != text.data() + text.size()) lines.fail(what + ": \"" + text + "\" is not a number");
+    if (ec != std::errc() || end != text.data() + text.size())
+        lines.fail(what + ": \"" + text + "\" is not a number");
     return value;
 }
 
 /// A line of exactly `n` fields.
-std::vector<std::string> fieldsOf(WfmLines& lines, std::size_t n, const std::string& what, const std::string& form) {
+std::vector<std::string> fieldsOf(WfmLines& lines, std::size_t n, const std::string& what,
+                                  const std::string& form)
+{
     auto fields = lines.expect(what);
     if (fields.size() != n) {
-        lines.fail(what + ": expected " + std::to_string(n) + " fields \"" + form + "\", got \"" + joined(fields) + "\"");
+        lines.fail(what + ": expected " + std::to_string(n) + " fields \"" + form + "\", got \"" +
+                   joined(fields) + "\"");
     }
     return fields;
 }
 
-long countOf(WfmLines& lines, const std::string& what) {
+long countOf(WfmLines& lines, const std::string& what)
+{
     const auto fields = fieldsOf(lines, 1, "the " + what + " count", "count");
     const long n = toInt(lines, fields[0], "the " + what + " count");
-    if (n < 0 || n > kMaxCount) lines.fail("the " + what + " count " + fields[0] + " is out of range");
+    if (n < 0 || n > kMaxCount)
+        lines.fail("the " + what + " count " + fields[0] + " is out of range");
     return n;
 }
 
-int vertexIndex(WfmLines& lines, const std::string& text, const std::string& what, std::size_t vertexCount) {
+int vertexIndex(WfmLines& lines, const std::string& text, const std::string& what,
+                std::size_t vertexCount)
+{
     const long v = toInt(lines, text, what);
     if (v < 0 || v >= static_cast<long>(vertexCount)) {
-        lines.fail(what + ": vertex " + text + " does not exist (" + std::to_string(vertexCount) + " vertices)");
+        lines.fail(what + ": vertex " + text + " does not exist (" + std::to_string(vertexCount) +
+                   " vertices)");
     }
     return static_cast<int>(v);
 }
 
-Eigen::Vector3f vector3(WfmLines& lines, const std::vector<std::string>& f, std::size_t first, const std::string& what) {
-    return {toFloat(lines, f[first], what), toFloat(lines, f[first + 1], what), toFloat(lines, f[first + 2], what)};
+Eigen::Vector3f vector3(WfmLines& lines, const std::vector<std::string>& f, std::size_t first,
+                        const std::string& what)
+{
+    return {toFloat(lines, f[first], what), toFloat(lines, f[first + 1], what),
+            toFloat(lines, f[first + 2], what)};
 }
 
-void readVertices(WfmLines& lines, vision::CandideMesh& mesh) {
+void readVertices(WfmLines& lines, vision::CandideMesh& mesh)
+{
     const long n = countOf(lines, "vertex");
     for (long i = 0; i < n; ++i) {
         const std::string what = "vertex " + std::to_string(i) + " of " + std::to_string(n);
@@ -126,21 +152,25 @@ void readVertices(WfmLines& lines, vision::CandideMesh& mesh) {
     }
 }
 
-void readTriangles(WfmLines& lines, vision::CandideMesh& mesh) {
+void readTriangles(WfmLines& lines, vision::CandideMesh& mesh)
+{
     const long n = countOf(lines, "triangle");
     for (long i = 0; i < n; ++i) {
         const std::string what = "triangle " + std::to_string(i) + " of " + std::to_string(n);
         const auto f = fieldsOf(lines, 3, what, "i j k");
         std::array<int, 3> t{};
-        for (std::size_t k = 0; k < 3; ++k) t[k] = vertexIndex(lines, f[k], what, mesh.vertices.size());
-        if (t[0] == t[1] || t[1] == t[2] || t[0] == t[2]) lines.fail(what + ": repeats a vertex");
+        for (std::size_t k = 0; k < 3; ++k)
+            t[k] = vertexIndex(lines, f[k], what, mesh.vertices.size());
+        if (t[0] == t[1] || t[1] == t[2] || t[0] == t[2])
+            lines.fail(what + ": repeats a vertex");
         mesh.triangles.push_back(t);
     }
 }
 
 /// "AUV11 Jaw drop (AU26/27)" -> label "AUV11", name "Jaw drop (AU26/27)"; "FAP 3 open_jaw" ->
 /// "FAP 3", "open_jaw"; a shape unit's comment is all name.
-void nameUnit(const std::string& comment, vision::CandideUnit& unit) {
+void nameUnit(const std::string& comment, vision::CandideUnit& unit)
+{
     std::istringstream words(comment);
     std::string first;
     words >> first;
@@ -149,7 +179,8 @@ void nameUnit(const std::string& comment, vision::CandideUnit& unit) {
         label = first;
     } else if (first.starts_with("FAP")) {
         std::string number = first.substr(3);
-        if (number.empty()) words >> number;
+        if (number.empty())
+            words >> number;
         label = "FAP " + number;
     }
     if (label.empty()) {
@@ -162,15 +193,19 @@ void nameUnit(const std::string& comment, vision::CandideUnit& unit) {
     unit.name = rest;
 }
 
-void readUnits(WfmLines& lines, std::size_t vertexCount, const std::string& kind, std::vector<vision::CandideUnit>& units) {
+void readUnits(WfmLines& lines, std::size_t vertexCount, const std::string& kind,
+               std::vector<vision::CandideUnit>& units)
+{
     const long n = countOf(lines, kind + " unit");
     for (long u = 0; u < n; ++u) {
-        const std::string unitWhat = kind + " unit " + std::to_string(u) + " of " + std::to_string(n);
+        const std::string unitWhat =
+            kind + " unit " + std::to_string(u) + " of " + std::to_string(n);
         const long entries = countOf(lines, unitWhat + "'s vertex");
         vision::CandideUnit unit;
         nameUnit(lines.comment(), unit);
         for (long e = 0; e < entries; ++e) {
-            const std::string what = unitWhat + " (" + (unit.name.empty() ? unit.label : unit.name) + "), entry " +
+            const std::string what = unitWhat + " (" +
+                                     (unit.name.empty() ? unit.label : unit.name) + "), entry " +
                                      std::to_string(e) + " of " + std::to_string(entries);
             const auto f = fieldsOf(lines, 4, what, "vertex dx dy dz");
             unit.vertices.push_back(vertexIndex(lines, f[0], what, vertexCount));
@@ -181,28 +216,36 @@ void readUnits(WfmLines& lines, std::size_t vertexCount, const std::string& kind
 }
 
 /// Parameters stored with the model pose it, they are not part of it: checked, not kept.
-void readParameters(WfmLines& lines, std::size_t unitCount, const std::string& kind) {
+void readParameters(WfmLines& lines, std::size_t unitCount, const std::string& kind)
+{
     const long n = countOf(lines, kind + " parameter");
     for (long i = 0; i < n; ++i) {
-        const std::string what = kind + " parameter " + std::to_string(i) + " of " + std::to_string(n);
+        const std::string what =
+            kind + " parameter " + std::to_string(i) + " of " + std::to_string(n);
         const auto f = fieldsOf(lines, 2, what, "unit value");
         const long unit = toInt(lines, f[0], what);
-        if (unit < 0 || unit >= static_cast<long>(unitCount)) lines.fail(what + ": unit " + f[0] + " does not exist");
+        if (unit < 0 || unit >= static_cast<long>(unitCount))
+            lines.fail(what + ": unit " + f[0] + " does not exist");
         toFloat(lines, f[1], what);
     }
 }
 
-void readTextureAndGlobalMotion(WfmLines& lines) {
-    if (countOf(lines, "texture") != 0) lines.fail("texture coordinates are not supported (expected a count of 0)");
+void readTextureAndGlobalMotion(WfmLines& lines)
+{
+    if (countOf(lines, "texture") != 0)
+        lines.fail("texture coordinates are not supported (expected a count of 0)");
     for (const char* row : {"global rotation", "global scale", "global translation"}) {
-        vector3(lines, fieldsOf(lines, 3, std::string("the ") + row, "x y z"), 0, std::string("the ") + row);
+        vector3(lines, fieldsOf(lines, 3, std::string("the ") + row, "x y z"), 0,
+                std::string("the ") + row);
     }
-    if (const auto extra = lines.next()) lines.fail("unexpected data after the global motion: \"" + joined(*extra) + "\"");
+    if (const auto extra = lines.next())
+        lines.fail("unexpected data after the global motion: \"" + joined(*extra) + "\"");
 }
 
 }  // namespace
 
-vision::CandideMesh readWfm(std::istream& in, const std::string& name) {
+vision::CandideMesh readWfm(std::istream& in, const std::string& name)
+{
     WfmLines lines(in, name);
     vision::CandideMesh mesh;
     readVertices(lines, mesh);
@@ -215,8 +258,10 @@ vision::CandideMesh readWfm(std::istream& in, const std::string& name) {
     return mesh;
 }
 
-vision::CandideMesh loadWfm(const std::string& path) {
-    const vision::BoundedFile file = vision::readBoundedFile(path, vision::limits::kCandideWfmBytes);
+vision::CandideMesh loadWfm(const std::string& path)
+{
+    const vision::BoundedFile file =
+        vision::readBoundedFile(path, vision::limits::kCandideWfmBytes);
     if (file.status != vision::BoundedFile::Status::Ok) {
         throw WfmError(path + ": cannot read the CANDIDE model file: " + file.problem);
     }

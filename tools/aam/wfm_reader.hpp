@@ -8,8 +8,8 @@
 // and per unit a count and "vertex dx dy dz" lines; the same for the shape units; animation and
 // shape parameters (a count and "unit value" lines); texture (a count; only 0 is supported); the
 // global motion (rotation, scale, translation: three "x y z" lines). A unit's name is the first
-// comment line before its count ("# AUV11 Jaw drop (AU26/27)", "# FAP 3 open_jaw", "# Head height").
-// Any problem is a WfmError whose what() is one line, "PATH:LINE: what was wrong".
+// comment line before its count ("# AUV11 Jaw drop (AU26/27)", "# FAP 3 open_jaw", "# Head
+// height"). Any problem is a WfmError whose what() is one line, "PATH:LINE: what was wrong".
 
 #include "vision/candide_mesh.hpp"
 

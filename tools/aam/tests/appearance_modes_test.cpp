@@ -13,23 +13,28 @@ namespace {
 
 constexpr int kPixels = 500;
 
-Eigen::VectorXd pattern(int which) {
+Eigen::VectorXd pattern(int which)
+{
     Eigen::VectorXd v(kPixels);
-    for (int i = 0; i < kPixels; ++i) v(i) = which == 0 ? std::sin(0.05 * i) + 0.3 * std::cos(0.31 * i) : std::cos(0.013 * i * i);
+    for (int i = 0; i < kPixels; ++i)
+        v(i) = which == 0 ? std::sin(0.05 * i) + 0.3 * std::cos(0.31 * i) : std::cos(0.013 * i * i);
     return v;
 }
 
-std::vector<Eigen::VectorXd> family(int count, std::uint32_t seed) {
+std::vector<Eigen::VectorXd> family(int count, std::uint32_t seed)
+{
     std::mt19937 random(seed);
     std::uniform_real_distribution<double> gain(20, 60), bias(50, 150), amount(-0.5, 0.5);
     std::vector<Eigen::VectorXd> images;
     for (int i = 0; i < count; ++i) {
-        images.push_back(gain(random) * (pattern(0) + amount(random) * pattern(1)).array() + bias(random));
+        images.push_back(gain(random) * (pattern(0) + amount(random) * pattern(1)).array() +
+                         bias(random));
     }
     return images;
 }
 
-TEST(AppearanceModes, GainAndBiasOfAKnownPairAreRecovered) {
+TEST(AppearanceModes, GainAndBiasOfAKnownPairAreRecovered)
+{
     const Eigen::VectorXd b = pattern(0);
     const Eigen::VectorXd a = (b.array() - 0.25) / 3.0;  // b = 3 a + 0.25
     const aam::GainBias g = aam::gainBiasOnto(a, b);
@@ -37,7 +42,8 @@ TEST(AppearanceModes, GainAndBiasOfAKnownPairAreRecovered) {
     EXPECT_NEAR(g.beta, 0.25, 1e-9);
 }
 
-TEST(AppearanceModes, TheMeanIsThePatternAndTheFirstModeTheVariation) {
+TEST(AppearanceModes, TheMeanIsThePatternAndTheFirstModeTheVariation)
+{
     const aam::AppearanceModes m = aam::appearanceModes(family(40, 3), 0.99);
     EXPECT_NEAR(m.mean.mean(), 0, 1e-9);
     EXPECT_NEAR(m.mean.squaredNorm() / kPixels, 1, 1e-9);
@@ -45,11 +51,15 @@ TEST(AppearanceModes, TheMeanIsThePatternAndTheFirstModeTheVariation) {
     ASSERT_GE(m.modes.cols(), 1);
     const Eigen::VectorXd variation = aam::standardised(pattern(1)).normalized();
     EXPECT_GT(std::abs(m.modes.col(0).dot(variation)), 0.95);
-    EXPECT_LT((m.modes.transpose() * m.modes - Eigen::MatrixXd::Identity(m.modes.cols(), m.modes.cols())).norm(), 1e-9);
+    EXPECT_LT(
+        (m.modes.transpose() * m.modes - Eigen::MatrixXd::Identity(m.modes.cols(), m.modes.cols()))
+            .norm(),
+        1e-9);
     EXPECT_GT(m.iterations, 1);
 }
 
-TEST(AppearanceModes, ImagesOfTheFamilyNotTrainedOnAreReconstructed) {
+TEST(AppearanceModes, ImagesOfTheFamilyNotTrainedOnAreReconstructed)
+{
     const aam::AppearanceModes m = aam::appearanceModes(family(40, 3), 0.99);
     for (const Eigen::VectorXd& image : family(5, 99)) {
         const aam::AppearanceResidual r = aam::appearanceResidual(m, image);
@@ -58,7 +68,8 @@ TEST(AppearanceModes, ImagesOfTheFamilyNotTrainedOnAreReconstructed) {
     }
 }
 
-TEST(AppearanceModes, BadInputIsOneLine) {
+TEST(AppearanceModes, BadInputIsOneLine)
+{
     const auto message = [](auto f) {
         try {
             f();
@@ -67,9 +78,13 @@ TEST(AppearanceModes, BadInputIsOneLine) {
         }
         return std::string("no error");
     };
-    EXPECT_EQ(message([] { aam::appearanceModes(family(4, 1), 1.5); }), "appearance modes: variance fraction 1.500000 is not in (0, 1]");
-    EXPECT_EQ(message([] { aam::appearanceModes(family(1, 1)); }), "appearance modes: 1 images; at least 2 needed");
-    EXPECT_EQ(message([] { aam::appearanceModes({Eigen::VectorXd::Constant(kPixels, 7), pattern(0)}); }),
+    EXPECT_EQ(message([] { aam::appearanceModes(family(4, 1), 1.5); }),
+              "appearance modes: variance fraction 1.500000 is not in (0, 1]");
+    EXPECT_EQ(message([] { aam::appearanceModes(family(1, 1)); }),
+              "appearance modes: 1 images; at least 2 needed");
+    EXPECT_EQ(message([] {
+                  aam::appearanceModes({Eigen::VectorXd::Constant(kPixels, 7), pattern(0)});
+              }),
               "appearance: a flat image has no contrast to normalise");
 }
 

@@ -8,7 +8,8 @@
 
 namespace {
 
-aam::AlignedShapes varyingSquare() {
+aam::AlignedShapes varyingSquare()
+{
     // The square's right side moves by t (large), its top by u (small); nothing else.
     std::mt19937 random(5);
     std::normal_distribution<double> t(0, 2), u(0, 0.2);
@@ -19,12 +20,14 @@ aam::AlignedShapes varyingSquare() {
     }
     set.mean.assign(4, Eigen::Vector2d::Zero());
     for (const auto& s : set.shapes) {
-        for (std::size_t k = 0; k < 4; ++k) set.mean[k] += s[k] / 400.0;
+        for (std::size_t k = 0; k < 4; ++k)
+            set.mean[k] += s[k] / 400.0;
     }
     return set;
 }
 
-TEST(ShapeModes, FindsTheKnownDirectionsLargestFirst) {
+TEST(ShapeModes, FindsTheKnownDirectionsLargestFirst)
+{
     const aam::ShapeModes m = aam::shapeModes(varyingSquare(), 0.999);
     ASSERT_EQ(m.modes.cols(), 2);
     Eigen::VectorXd right = Eigen::VectorXd::Zero(8);
@@ -35,13 +38,15 @@ TEST(ShapeModes, FindsTheKnownDirectionsLargestFirst) {
     EXPECT_LT((m.modes.transpose() * m.modes - Eigen::MatrixXd::Identity(2, 2)).norm(), 1e-9);
 }
 
-TEST(ShapeModes, KeepsTheFewestModesForTheFraction) {
+TEST(ShapeModes, KeepsTheFewestModesForTheFraction)
+{
     const aam::ShapeModes m = aam::shapeModes(varyingSquare(), 0.9);
     EXPECT_EQ(m.modes.cols(), 1);
     EXPECT_GE(m.variances.sum(), 0.9 * m.totalVariance);
 }
 
-TEST(ShapeModes, ABadFractionIsOneLine) {
+TEST(ShapeModes, ABadFractionIsOneLine)
+{
     try {
         aam::shapeModes(varyingSquare(), 1.5);
         FAIL() << "no error";

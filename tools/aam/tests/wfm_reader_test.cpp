@@ -1,7 +1,8 @@
 // The .wfm reader: CANDIDE-3 read whole (counts, a vertex, a triangle, named units); a malformed
 // or truncated file is rejected with one line naming the line.
-#include "test_paths.hpp"
 #include "wfm_reader.hpp"
+
+#include "test_paths.hpp"
 
 #include <gtest/gtest.h>
 
@@ -13,13 +14,15 @@ namespace {
 
 const std::string kCandide = testing_support::sharedData("candide3/candide3.wfm");
 
-std::string readAll(const std::string& path) {
+std::string readAll(const std::string& path)
+{
     std::ifstream in(path);
     return {std::istreambuf_iterator<char>(in), {}};
 }
 
 /// The error line reading `text` gives ("" when it reads).
-std::string errorOf(const std::string& text) {
+std::string errorOf(const std::string& text)
+{
     std::istringstream in(text);
     try {
         aam::readWfm(in, "bad.wfm");
@@ -37,8 +40,10 @@ const std::string kTiny =
     "# SHAPE UNITS LIST:\n1\n# Mouth width\n1\n1 0.1 0 0\n"
     "0\n0\n0\n0 0 0\n1 1 1\n0 0 0\n# END OF FILE\n";
 
-TEST(WfmReader, ReadsCandide3Whole) {
-    if (!std::filesystem::exists(kCandide)) GTEST_SKIP() << kCandide << " not present";
+TEST(WfmReader, ReadsCandide3Whole)
+{
+    if (!std::filesystem::exists(kCandide))
+        GTEST_SKIP() << kCandide << " not present";
     const vision::CandideMesh mesh = aam::loadWfm(kCandide);
     ASSERT_EQ(mesh.vertices.size(), 113u);
     EXPECT_EQ(mesh.triangles.size(), 184u);
@@ -61,7 +66,8 @@ TEST(WfmReader, ReadsCandide3Whole) {
     EXPECT_NE(vision::findUnit(mesh.animationUnits, "Lip corner depressor"), nullptr);
 }
 
-TEST(WfmReader, ReadsAMinimalFile) {
+TEST(WfmReader, ReadsAMinimalFile)
+{
     std::istringstream in(kTiny);
     const vision::CandideMesh mesh = aam::readWfm(in, "tiny.wfm");
     EXPECT_EQ(mesh.vertices.size(), 3u);
@@ -69,18 +75,22 @@ TEST(WfmReader, ReadsAMinimalFile) {
     EXPECT_EQ(mesh.shapeUnits.at(0).label, "");
 }
 
-TEST(WfmReader, RejectsATruncatedFileNamingTheLine) {
-    if (!std::filesystem::exists(kCandide)) GTEST_SKIP() << kCandide << " not present";
+TEST(WfmReader, RejectsATruncatedFileNamingTheLine)
+{
+    if (!std::filesystem::exists(kCandide))
+        GTEST_SKIP() << kCandide << " not present";
     const std::string whole = readAll(kCandide);
     // Cut inside the face list: lines 156-169 are its first 14 triangles.
     std::string cut;
     std::istringstream lines(whole);
     std::string line;
-    for (int n = 1; n < 170 && std::getline(lines, line); ++n) cut += line + "\n";
+    for (int n = 1; n < 170 && std::getline(lines, line); ++n)
+        cut += line + "\n";
     EXPECT_EQ(errorOf(cut), "bad.wfm:169: file ends where triangle 14 of 184 was expected");
 }
 
-TEST(WfmReader, RejectsGarbledLinesNamingTheLine) {
+TEST(WfmReader, RejectsGarbledLinesNamingTheLine)
+{
     auto replaced = [](std::string text, const std::string& from, const std::string& to) {
         return text.replace(text.find(from), from.size(), to);
     };
@@ -91,35 +101,42 @@ TEST(WfmReader, RejectsGarbledLinesNamingTheLine) {
               "bad.wfm:5: vertex 2 of 3: expected 3 fields \"x y z\", got \"0 1\"");
     EXPECT_EQ(errorOf(replaced(kTiny, "0 1 2\n", "0 1 7\n")),
               "bad.wfm:8: triangle 0 of 1: vertex 7 does not exist (3 vertices)");
-    EXPECT_EQ(errorOf(replaced(kTiny, "0 1 2\n", "0 1 1\n")), "bad.wfm:8: triangle 0 of 1: repeats a vertex");
+    EXPECT_EQ(errorOf(replaced(kTiny, "0 1 2\n", "0 1 1\n")),
+              "bad.wfm:8: triangle 0 of 1: repeats a vertex");
     EXPECT_EQ(errorOf(replaced(kTiny, "# VERTEX LIST:\n3\n", "# VERTEX LIST:\n-3\n")),
               "bad.wfm:2: the vertex count -3 is out of range");
-    EXPECT_EQ(errorOf(replaced(kTiny, "2 0 -0.26 -0.05\n", "2 0 -0.26\n")),
-              "bad.wfm:13: animation unit 0 of 1 (Jaw drop (AU26/27)), entry 0 of 1: expected 4 fields "
-              "\"vertex dx dy dz\", got \"2 0 -0.26\"");
+    EXPECT_EQ(
+        errorOf(replaced(kTiny, "2 0 -0.26 -0.05\n", "2 0 -0.26\n")),
+        "bad.wfm:13: animation unit 0 of 1 (Jaw drop (AU26/27)), entry 0 of 1: expected 4 fields "
+        "\"vertex dx dy dz\", got \"2 0 -0.26\"");
     EXPECT_EQ(errorOf(replaced(kTiny, "# END OF FILE\n", "5\n")),
               "bad.wfm:25: unexpected data after the global motion: \"5\"");
     EXPECT_EQ(errorOf(replaced(kTiny, "0\n0\n0\n0 0 0\n", "0\n0\n2\n0 0 0\n")),
               "bad.wfm:21: texture coordinates are not supported (expected a count of 0)");
 }
 
-TEST(WfmReader, AMissingFileIsOneLine) {
+TEST(WfmReader, AMissingFileIsOneLine)
+{
     try {
         aam::loadWfm("/nonexistent/candide3.wfm");
         FAIL() << "no error";
     } catch (const aam::WfmError& e) {
         EXPECT_STREQ(e.what(),
-                     "/nonexistent/candide3.wfm: cannot read the CANDIDE model file: cannot read file: No such file or directory");
+                     "/nonexistent/candide3.wfm: cannot read the CANDIDE model file: cannot read "
+                     "file: No such file or directory");
     }
 }
 
-TEST(WfmReader, ADeviceInTheFilesPlaceIsOneLine) {
+TEST(WfmReader, ADeviceInTheFilesPlaceIsOneLine)
+{
     // Read through readBoundedFile: /dev/zero is refused at once instead of read for ever.
     try {
         aam::loadWfm("/dev/zero");
         FAIL() << "no error";
     } catch (const aam::WfmError& e) {
-        EXPECT_STREQ(e.what(), "/dev/zero: cannot read the CANDIDE model file: not a regular file (a FIFO, a device or a socket)");
+        EXPECT_STREQ(e.what(),
+                     "/dev/zero: cannot read the CANDIDE model file: not a regular file (a FIFO, a "
+                     "device or a socket)");
     }
 }
 

@@ -7,7 +7,6 @@
 // camera), y up, z out of the face towards the camera; units of about half a face width.
 
 #include <Eigen/Core>
-
 #include <array>
 #include <string>
 #include <vector>
@@ -17,16 +16,17 @@ namespace vision {
 /// A linear deformation of the mesh: an animation unit (expression) or a shape unit (the person's
 /// own proportions). Mathematically the same (§5): vertex += parameter * displacement.
 struct CandideUnit {
-    std::string name;   ///< as the file names it, e.g. "Jaw drop (AU26/27)"
-    std::string label;  ///< "AUV11" for an action unit vector, "FAP 3" for a FAP, "" for a shape unit
-    std::vector<int> vertices;                    ///< indices into CandideMesh::vertices
-    std::vector<Eigen::Vector3f> displacements;   ///< one per entry of `vertices`
+    std::string name;  ///< as the file names it, e.g. "Jaw drop (AU26/27)"
+    std::string
+        label;  ///< "AUV11" for an action unit vector, "FAP 3" for a FAP, "" for a shape unit
+    std::vector<int> vertices;                   ///< indices into CandideMesh::vertices
+    std::vector<Eigen::Vector3f> displacements;  ///< one per entry of `vertices`
 };
 
 struct CandideMesh {
-    std::vector<Eigen::Vector3f> vertices;     ///< base shape, model frame
-    std::vector<int> candideNumber;            ///< CANDIDE-3's number of each vertex (tables use it)
-    std::vector<std::array<int, 3>> triangles; ///< indices into `vertices`
+    std::vector<Eigen::Vector3f> vertices;  ///< base shape, model frame
+    std::vector<int> candideNumber;         ///< CANDIDE-3's number of each vertex (tables use it)
+    std::vector<std::array<int, 3>> triangles;  ///< indices into `vertices`
     std::vector<CandideUnit> animationUnits;
     std::vector<CandideUnit> shapeUnits;
 
@@ -42,6 +42,7 @@ std::vector<Eigen::Vector3f> deformedVertices(const CandideMesh& mesh,
 
 /// The unit named `name` (compared up to its first " (", so "Jaw drop" finds "Jaw drop (AU26/27)"),
 /// or nullptr.
-const CandideUnit* findUnit(const std::vector<CandideUnit>& units, const std::string& name) noexcept;
+const CandideUnit* findUnit(const std::vector<CandideUnit>& units,
+                            const std::string& name) noexcept;
 
 }  // namespace vision

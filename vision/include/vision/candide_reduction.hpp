@@ -25,8 +25,8 @@ namespace vision {
 /// all of them is above the eyebrows.
 inline constexpr std::array<int, 8> kCandideEyebrowVertices{15, 16, 17, 18, 48, 49, 50, 51};
 
-/// CANDIDE-3's iris bounding-box vertices (its appendix A: 67, 68, 71, 72 left; 69, 70, 73, 74 right), the
-/// corners of the eyeball surfaces.
+/// CANDIDE-3's iris bounding-box vertices (its appendix A: 67, 68, 71, 72 left; 69, 70, 73, 74
+/// right), the corners of the eyeball surfaces.
 inline constexpr std::array<int, 8> kCandideIrisVertices{67, 68, 69, 70, 71, 72, 73, 74};
 
 /// One eye opening's contour in CANDIDE-3 numbers: the outer corner, the upper lid's lash line
@@ -56,15 +56,22 @@ inline constexpr std::array<KeptUnit, 6> kTrackedAnimationUnits{{
     {"AUV14", "Lip corner depressor"},
 }};
 /// The kept shape units in the order of their parameters (see the file comment for the four left).
-inline constexpr std::array<std::string_view, 10> kTrackedShapeUnits{
-    "Eyebrows vertical position", "Eyes vertical position", "Eyes, width", "Eyes, height",
-    "Eye separation distance", "Nose vertical position", "Mouth vertical position", "Mouth width",
-    "Eyes vertical difference", "Chin width"};
+inline constexpr std::array<std::string_view, 10> kTrackedShapeUnits{"Eyebrows vertical position",
+                                                                     "Eyes vertical position",
+                                                                     "Eyes, width",
+                                                                     "Eyes, height",
+                                                                     "Eye separation distance",
+                                                                     "Nose vertical position",
+                                                                     "Mouth vertical position",
+                                                                     "Mouth width",
+                                                                     "Eyes vertical difference",
+                                                                     "Chin width"};
 inline constexpr std::array<std::string_view, 4> kDroppedShapeUnits{
     "Head height", "Cheeks z", "Nose z-extension", "Nose, pointing up"};
 
 /// The face mesh the AAM tracks, cut from the full CANDIDE-3 as above. Its `candideNumber` keeps
-/// each vertex's CANDIDE-3 number. Throws std::runtime_error (one line) when a kept unit is missing.
+/// each vertex's CANDIDE-3 number. Throws std::runtime_error (one line) when a kept unit is
+/// missing.
 CandideMesh reduceCandideForTracking(const CandideMesh& full);
 
 }  // namespace vision

@@ -11,17 +11,19 @@ namespace vision::limits {
 inline constexpr std::size_t kMiB = 1024 * 1024;
 
 // ---- files, in bytes -----------------------------------------------------------------------
-inline constexpr std::size_t kConfigBytes = 1 * kMiB;       ///< a config is a few kB
-inline constexpr std::size_t kStateFileBytes = 64 * 1024;   ///< a colour, an overlay per face
-inline constexpr std::size_t kCascadeBytes = 16 * kMiB;     ///< OpenCV's largest face cascade: 0.9 MB
-inline constexpr std::size_t kCatalogueBytes = 1 * kMiB;    ///< ours: 3 kB
-inline constexpr std::size_t kObjBytes = 16 * kMiB;         ///< ours: under 200 kB
-inline constexpr std::size_t kTextureBytes = 16 * kMiB;     ///< a 2048x2048 PNG: a few MB
-inline constexpr std::size_t kImageFileBytes = 64 * kMiB;   ///< a 7680x4320 PNG frame: ~50 MB
-inline constexpr std::size_t kAamModelBytes = 64 * kMiB;    ///< ours at 96 px: under 1 MB; 256 px, 100 modes: ~25 MB
+inline constexpr std::size_t kConfigBytes = 1 * kMiB;      ///< a config is a few kB
+inline constexpr std::size_t kStateFileBytes = 64 * 1024;  ///< a colour, an overlay per face
+inline constexpr std::size_t kCascadeBytes = 16 * kMiB;   ///< OpenCV's largest face cascade: 0.9 MB
+inline constexpr std::size_t kCatalogueBytes = 1 * kMiB;  ///< ours: 3 kB
+inline constexpr std::size_t kObjBytes = 16 * kMiB;       ///< ours: under 200 kB
+inline constexpr std::size_t kTextureBytes = 16 * kMiB;   ///< a 2048x2048 PNG: a few MB
+inline constexpr std::size_t kImageFileBytes = 64 * kMiB;  ///< a 7680x4320 PNG frame: ~50 MB
+inline constexpr std::size_t kAamModelBytes =
+    64 * kMiB;  ///< ours at 96 px: under 1 MB; 256 px, 100 modes: ~25 MB
 // The AAM builder's inputs (tools/aam).
-inline constexpr std::size_t kCandideWfmBytes = 1 * kMiB;   ///< CANDIDE-3: 14 kB
-inline constexpr std::size_t kAnnotationBytes = 1 * kMiB;   ///< an IMM .asf: 3 kB; a 68-point .pts: 1 kB
+inline constexpr std::size_t kCandideWfmBytes = 1 * kMiB;  ///< CANDIDE-3: 14 kB
+inline constexpr std::size_t kAnnotationBytes =
+    1 * kMiB;  ///< an IMM .asf: 3 kB; a 68-point .pts: 1 kB
 
 // ---- images, in pixels, checked from the header before decoding ----------------------------
 /// A frame or a card picture: no larger than the largest capture the config allows (8K UHD,
