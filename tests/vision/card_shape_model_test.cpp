@@ -126,6 +126,17 @@ TEST(CardShapeModel, AnEdgeUnderAHandMovesWithTheCard)
     EXPECT_FALSE(carryHiddenEdge(kCard, {640, 480}, r));
 }
 
+TEST(CardShapeModel, AnEdgeRunningOutOfViewIsCarriedByItsEndInView)
+{
+    // The right edge's top end beyond the top of the frame, then and now: its bottom end is in
+    // view, so the edge is the card's there and moves with it.
+    const Quad then = moved(kCard, 0.f, -95.f);
+    const Quad now = moved(kCard, 6.f, -95.f);
+    EdgeRefinement r = withHiddenEdge(now, 1);
+    ASSERT_TRUE(carryHiddenEdge(then, {640, 480}, r));
+    EXPECT_LT(quadDistance(r.quad, now), 0.05f);
+}
+
 TEST(CardShapeModel, AnEdgeIsNotCarriedWhenTheCardTurnedInDepth)
 {
     // The top and bottom edges converge now (the card turned about a vertical axis): the measured

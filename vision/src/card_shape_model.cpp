@@ -127,18 +127,24 @@ float CardShapeModel::edgeGuide(unsigned missed) const noexcept
     return k * (6.f + 0.05f * std::sqrt(std::max(lastArea_, 1.f)) + 0.5f * speed_);
 }
 
-bool carryHiddenEdge(const Quad& reference, Size frame, EdgeRefinement& r) noexcept
+namespace {
+
+/// Well inside the frame: 8 px from its border.
+bool wellInView(Point2f p, Size frame) noexcept
 {
-    // Well inside the frame: 8 px from its border.
-    auto inView = [&frame](Point2f p) {
-        return p.x >= 8.f && p.y >= 8.f && p.x <= static_cast<float>(frame.width - 9) &&
-               p.y <= static_cast<float>(frame.height - 9);
-    };
-    if (r.edgesFitted != 3)
-        return false;
-    int k = 0;
-    while (r.fitted[k])
-        ++k;
+    return p.x >= 8.f && p.y >= 8.f && p.x <= static_cast<float>(frame.width - 9) &&
+           p.y <= static_cast<float>(frame.height - 9);
+}
+
+/// Where edge k of `r` is when it moved with the card: the two corners between the other three
+/// edges and the same two corners of `reference` give the card's motion since then as a
+/// similarity; edge k is the reference's one moved by it, cut by its neighbours (p0, p1). False
+/// when the motion is implausible or not rigid in the image (the card turned in depth). With
+/// `inView`, an end of the reference's edge k must have been well inside the frame (an edge
+/// wholly out of view is unknowable; one running out of view is the card's, as its end in view).
+bool carriedEdge(const Quad& reference, Size frame, const EdgeRefinement& r, int k, bool inView,
+                 Line2f& hidden, Point2f& p0, Point2f& p1) noexcept
+{
     // Corner i joins edges i - 1 and i; edge k runs from corner k to corner k + 1, so corners
     // k + 2 and k + 3 are the measured ones.
     Point2f a, b;
@@ -147,7 +153,7 @@ bool carryHiddenEdge(const Quad& reference, Size frame, EdgeRefinement& r) noexc
         return false;
     const int s = bestShiftCentred(r.quad, reference);  // r.quad[(i + s) % 4] is reference[i]
     auto then = [&](int corner) { return reference[(corner - s + 8) % 4]; };
-    if (!inView(then(k)) || !inView(then((k + 1) % 4)))
+    if (inView && !wellInView(then(k), frame) && !wellInView(then((k + 1) % 4), frame))
         return false;
     // The similarity z -> m z + t taking the reference's two measured corners to a, b (as
     // complex numbers). Anchored to a measured quad, never to a carried one: carried again, an
@@ -178,11 +184,24 @@ bool carryHiddenEdge(const Quad& reference, Size frame, EdgeRefinement& r) noexc
         const float px = p.x - ra.x, py = p.y - ra.y;
         return Point2f{a.x + mr * px - mi * py, a.y + mi * px + mr * py};
     };
+    return lineThrough(moved(then(k)), moved(then((k + 1) % 4)), hidden) &&
+           intersectLines(r.lines[(k + 3) % 4], hidden, p0) &&
+           intersectLines(hidden, r.lines[(k + 1) % 4], p1);
+}
+
+}  // namespace
+
+bool carryHiddenEdge(const Quad& reference, Size frame, EdgeRefinement& r) noexcept
+{
+    if (r.edgesFitted != 3)
+        return false;
+    int k = 0;
+    while (r.fitted[k])
+        ++k;
     Line2f hidden;
     Point2f p0, p1;
-    if (!lineThrough(moved(then(k)), moved(then((k + 1) % 4)), hidden) ||
-        !intersectLines(r.lines[(k + 3) % 4], hidden, p0) ||
-        !intersectLines(hidden, r.lines[(k + 1) % 4], p1) || !inView(p0) || !inView(p1))
+    if (!carriedEdge(reference, frame, r, k, true, hidden, p0, p1) ||
+        (!wellInView(p0, frame) && !wellInView(p1, frame)))
         return false;
     r.lines[k] = hidden;
     r.quad[k] = p0;

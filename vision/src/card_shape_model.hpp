@@ -67,8 +67,9 @@ float quadDistance(const Quad& a, const Quad& b) noexcept;
 /// of `reference` (the last quad measured on all four edges) give the card's motion since then as
 /// a similarity; the hidden edge is the reference's one moved by it, cut by its fitted neighbours.
 /// `r.lines` and `r.quad` are updated. False (r unchanged) when no edge or more than one is
-/// hidden, the motion is implausible, or the hidden edge is at or beyond the border of a frame of
-/// `frame` (then or now): an edge out of view is unknowable.
+/// hidden, the motion is implausible, or the hidden edge is wholly at or beyond the border of a
+/// frame of `frame` (then or now): an edge out of view is unknowable, while one running out of
+/// view is still the card's where it is in view (kept there, it would follow a hand's outline).
 bool carryHiddenEdge(const Quad& reference, Size frame, EdgeRefinement& r) noexcept;
 
 }  // namespace vision

@@ -81,6 +81,18 @@ TEST(CardFailureModes, AHandsOutlineIsNotTakenForTheCardsEdge)
     EXPECT_EQ(run.metrics.falseTrackingFrames, 0);
 }
 
+// A hand over the card's bottom-right corner while its top-right corner was out of view: the
+// right edge, running out of view, was not carried (an edge at the border is unknowable), so it
+// kept the wide pass's line, the hand's outline (70-85 px off from frame 121). An edge with an
+// end in view is carried now.
+TEST(CardFailureModes, AnEdgeRunningOutOfViewUnderAHandMovesWithTheCard)
+{
+    const TrackerRun run = runScenario("hard", 1001, 112, 130);
+    EXPECT_EQ(run.metrics.lostFrames, 0) << misses(run);
+    EXPECT_LE(run.metrics.maxErrPx, 6.0) << misses(run);
+    EXPECT_EQ(run.metrics.falseTrackingFrames, 0);
+}
+
 // Found again as it came back into view, the card's one visible piece of an edge (4 px) gave a
 // quad with a corner 400 px outside the frame, followed for frames after. (A guard: the tracker
 // before the shape model lost the card here instead; the second seed made this possible.)
