@@ -1,7 +1,7 @@
-// The .asf and .pts readers: a line source that skips comments and blank lines, and one function
-// per part of each file.
+// The .asf and .pts readers: one function per part of each file, over FieldLines.
 #include "annotation_files.hpp"
 
+#include "field_lines.hpp"
 #include "vision/bounded_file.hpp"
 #include "vision/input_limits.hpp"
 
@@ -16,53 +16,7 @@ namespace {
 
 constexpr long kMaxPoints = 10000;  // a garbled count must not become a huge allocation
 
-class AnnotationLines {
-public:
-    AnnotationLines(std::istream& in, std::string name) : in_(in), name_(std::move(name)) {}
-
-    std::optional<std::vector<std::string>> next()
-    {
-        std::string line;
-        while (std::getline(in_, line)) {
-            ++number_;
-            const auto start = line.find_first_not_of(" \t\r");
-            if (start == std::string::npos || line[start] == '#')
-                continue;
-            std::istringstream fields(line);
-            std::vector<std::string> out;
-            for (std::string f; fields >> f;)
-                out.push_back(f);
-            return out;
-        }
-        return std::nullopt;
-    }
-
-    std::vector<std::string> expect(const std::string& what)
-    {
-        auto fields = next();
-        if (!fields)
-            fail("file ends where " + what + " was expected");
-        return *fields;
-    }
-
-    [[noreturn]] void fail(const std::string& what) const
-    {
-        throw AnnotationError(name_ + ":" + std::to_string(number_) + ": " + what);
-    }
-
-private:
-    std::istream& in_;
-    std::string name_;
-    int number_ = 0;
-};
-
-std::string joined(const std::vector<std::string>& fields)
-{
-    std::string s;
-    for (const auto& f : fields)
-        s += (s.empty() ? "" : " ") + f;
-    return s;
-}
+using AnnotationLines = FieldLines<AnnotationError>;
 
 template <typename T>
 T parsed(AnnotationLines& lines, const std::string& text, const std::string& what)
@@ -91,7 +45,7 @@ Eigen::Vector2d asfPoint(AnnotationLines& lines, long i, long n, int width, int 
     // 41 of IMM's files append three numbers (0.00) to each point, as later AAM-API versions write.
     if (f.size() != 7 && f.size() != 10) {
         lines.fail(what + ": expected 7 fields \"path type x y point from to\", got \"" +
-                   joined(f) + "\"");
+                   joinedFields(f) + "\"");
     }
     const double x = parsed<double>(lines, f[2], what);
     const double y = parsed<double>(lines, f[3], what);
@@ -109,17 +63,17 @@ Annotation readAsf(std::istream& in, const std::string& name, int imageWidth, in
     AnnotationLines lines(in, name);
     const auto countLine = lines.expect("the point count");
     if (countLine.size() != 1)
-        lines.fail("expected the point count, got \"" + joined(countLine) + "\"");
+        lines.fail("expected the point count, got \"" + joinedFields(countLine) + "\"");
     const long n = pointCount(lines, countLine, 0);
     Annotation a;
     for (long i = 0; i < n; ++i)
         a.points.push_back(asfPoint(lines, i, n, imageWidth, imageHeight));
     const auto host = lines.expect("the host image's file name");
     if (host.size() != 1)
-        lines.fail("expected the host image's file name, got \"" + joined(host) + "\"");
+        lines.fail("expected the host image's file name, got \"" + joinedFields(host) + "\"");
     a.hostImage = host[0];
     if (const auto extra = lines.next())
-        lines.fail("unexpected data after the host image: \"" + joined(*extra) + "\"");
+        lines.fail("unexpected data after the host image: \"" + joinedFields(*extra) + "\"");
     return a;
 }
 
@@ -128,11 +82,11 @@ Annotation readPts(std::istream& in, const std::string& name)
     AnnotationLines lines(in, name);
     const auto version = lines.expect("\"version: 1\"");
     if (version.size() != 2 || version[0] != "version:" || version[1] != "1") {
-        lines.fail("expected \"version: 1\", got \"" + joined(version) + "\"");
+        lines.fail("expected \"version: 1\", got \"" + joinedFields(version) + "\"");
     }
     const auto count = lines.expect("\"n_points: N\"");
     if (count.size() != 2 || count[0] != "n_points:")
-        lines.fail("expected \"n_points: N\", got \"" + joined(count) + "\"");
+        lines.fail("expected \"n_points: N\", got \"" + joinedFields(count) + "\"");
     const long n = pointCount(lines, count, 1);
     if (lines.expect("\"{\"") != std::vector<std::string>{"{"})
         lines.fail("expected \"{\" before the points");
@@ -141,16 +95,16 @@ Annotation readPts(std::istream& in, const std::string& name)
         const std::string what = "point " + std::to_string(i) + " of " + std::to_string(n);
         const auto f = lines.expect(what);
         if (f.size() != 2)
-            lines.fail(what + ": expected \"x y\", got \"" + joined(f) + "\"");
+            lines.fail(what + ": expected \"x y\", got \"" + joinedFields(f) + "\"");
         a.points.emplace_back(parsed<double>(lines, f[0], what), parsed<double>(lines, f[1], what));
     }
     const auto close = lines.expect("\"}\" after " + std::to_string(n) + " points");
     if (close != std::vector<std::string>{"}"}) {
-        lines.fail("expected \"}\" after " + std::to_string(n) + " points, got \"" + joined(close) +
+        lines.fail("expected \"}\" after " + std::to_string(n) + " points, got \"" + joinedFields(close) +
                    "\"");
     }
     if (const auto extra = lines.next())
-        lines.fail("unexpected data after \"}\": \"" + joined(*extra) + "\"");
+        lines.fail("unexpected data after \"}\": \"" + joinedFields(*extra) + "\"");
     return a;
 }
 

@@ -1,7 +1,8 @@
-// The .wfm reader: a line source that skips comments (remembering the first one before a data
-// line, the next unit's name), and one function per section of the file, in the file's order.
+// The .wfm reader: one function per section of the file, in the file's order, over FieldLines
+// (whose remembered comment names the next unit).
 #include "wfm_reader.hpp"
 
+#include "field_lines.hpp"
 #include "vision/bounded_file.hpp"
 #include "vision/input_limits.hpp"
 
@@ -17,73 +18,7 @@ namespace {
 // Bounds a garbled count could otherwise turn into a huge allocation; CANDIDE-3 has 113 vertices.
 constexpr long kMaxCount = 100000;
 
-class WfmLines {
-public:
-    WfmLines(std::istream& in, std::string name) : in_(in), name_(std::move(name)) {}
-
-    /// The next data line split into fields, or nothing at the end of the file.
-    std::optional<std::vector<std::string>> next()
-    {
-        std::string line;
-        comment_.clear();
-        bool sawComment = false;
-        while (std::getline(in_, line)) {
-            ++number_;
-            const auto start = line.find_first_not_of(" \t\r");
-            if (start == std::string::npos)
-                continue;
-            if (line[start] == '#') {
-                if (!sawComment)
-                    comment_ = trimmed(line.substr(start + 1));
-                sawComment = true;
-                continue;
-            }
-            std::istringstream fields(line);
-            std::vector<std::string> out;
-            for (std::string f; fields >> f;)
-                out.push_back(f);
-            return out;
-        }
-        return std::nullopt;
-    }
-
-    /// The next data line, which must exist: `what` says what was expected.
-    std::vector<std::string> expect(const std::string& what)
-    {
-        auto fields = next();
-        if (!fields)
-            fail("file ends where " + what + " was expected");
-        return *fields;
-    }
-
-    [[noreturn]] void fail(const std::string& what) const
-    {
-        throw WfmError(name_ + ":" + std::to_string(number_) + ": " + what);
-    }
-
-    const std::string& comment() const noexcept { return comment_; }
-
-private:
-    static std::string trimmed(const std::string& s)
-    {
-        const auto a = s.find_first_not_of(" \t\r");
-        const auto b = s.find_last_not_of(" \t\r");
-        return a == std::string::npos ? std::string() : s.substr(a, b - a + 1);
-    }
-
-    std::istream& in_;
-    std::string name_;
-    int number_ = 0;
-    std::string comment_;
-};
-
-std::string joined(const std::vector<std::string>& fields)
-{
-    std::string s;
-    for (const auto& f : fields)
-        s += (s.empty() ? "" : " ") + f;
-    return s;
-}
+using WfmLines = FieldLines<WfmError>;
 
 long toInt(WfmLines& lines, const std::string& text, const std::string& what)
 {
@@ -110,7 +45,7 @@ std::vector<std::string> fieldsOf(WfmLines& lines, std::size_t n, const std::str
     auto fields = lines.expect(what);
     if (fields.size() != n) {
         lines.fail(what + ": expected " + std::to_string(n) + " fields \"" + form + "\", got \"" +
-                   joined(fields) + "\"");
+                   joinedFields(fields) + "\"");
     }
     return fields;
 }
@@ -239,7 +174,7 @@ void readTextureAndGlobalMotion(WfmLines& lines)
                 std::string("the ") + row);
     }
     if (const auto extra = lines.next())
-        lines.fail("unexpected data after the global motion: \"" + joined(*extra) + "\"");
+        lines.fail("unexpected data after the global motion: \"" + joinedFields(*extra) + "\"");
 }
 
 }  // namespace
