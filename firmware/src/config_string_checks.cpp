@@ -30,7 +30,8 @@ std::string checkSpec(std::string_view value, std::string_view what,
             if (value.size() > prefix.size()) {
                 return {};
             }
-            return excerpt(value) + " needs a " + std::string(argument) + " after " + quoted(prefix);
+            return excerpt(value) + " needs a " + std::string(argument) + " after " +
+                   quoted(prefix);
         }
     }
     return "unknown " + std::string(what) + " " + excerpt(value);

@@ -72,7 +72,8 @@ TEST(CardModelStore, AFifoInPlaceOfTheFileIsIgnoredWithoutWaitingForAWriter)
     ASSERT_EQ(::mkfifo(store.path().c_str(), 0600), 0);
     std::string warning;
     EXPECT_FALSE(store.load(warning).has_value());
-    EXPECT_EQ(warning, store.path() + ": not a regular file (a FIFO, a device or a socket); ignored");
+    EXPECT_EQ(warning,
+              store.path() + ": not a regular file (a FIFO, a device or a socket); ignored");
 }
 
 TEST(CardModelStore, AFolderThatCannotBeMadeIsReportedNotThrown)

@@ -205,8 +205,9 @@ TEST(FileSource, StartupErrorsAreOneClearLine)
     EXPECT_EQ(startupError(dir), "file:" + dir + ": no PNG/JPEG frames in folder");
     // A folder whose only frames are all undecodable.
     writeBytes(dir + "/a.jpg", "garbage");
-    EXPECT_EQ(startupError(dir),
-              "file:" + dir + ": a.jpg: not a PNG, JPEG or BMP file (no picture size in its header)");
+    EXPECT_EQ(
+        startupError(dir),
+        "file:" + dir + ": a.jpg: not a PNG, JPEG or BMP file (no picture size in its header)");
 }
 
 TEST(FileSource, SkipsAnUndecodableFrameInAFolder)

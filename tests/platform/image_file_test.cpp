@@ -143,7 +143,8 @@ TEST(ImageFile, APictureBeyondTheLimitsIsRefusedFromItsHeader)
     const std::string small = dir + "/small.png";
     ASSERT_TRUE(cv::imwrite(small, cv::Mat(8, 8, CV_8UC3, cv::Scalar(10, 20, 30))));
     // 8000x8000 would be 192 MB decoded (and 3.9 GB through the pipeline): refused unread.
-    for (const auto& [w, h] : {std::pair{8000u, 8000u}, std::pair{7680u, 4321u}, std::pair{0u, 5u}}) {
+    for (const auto& [w, h] :
+         {std::pair{8000u, 8000u}, std::pair{7680u, 4321u}, std::pair{0u, 5u}}) {
         const std::string bomb = dir + "/bomb.png";
         std::ofstream(bomb, std::ios::binary) << withClaimedSize(small, w, h);
         EXPECT_EQ(loadError(bomb), "card picture " + bomb + ": its header says " +

@@ -137,7 +137,8 @@ std::string oneFeatureCascade(int width, int height, const std::string& rect)
 
 TEST(HaarCascade, SizesThatWouldOverflowAreRefusedByName)
 {
-    const std::string wide = writeFile("wide.xml", oneFeatureCascade(24, 24, "1 0 2147483647 4 -1."));
+    const std::string wide =
+        writeFile("wide.xml", oneFeatureCascade(24, 24, "1 0 2147483647 4 -1."));
     EXPECT_NE(loadError(wide).find(": line 3: rectangle outside the detection window"),
               std::string::npos)
         << loadError(wide);

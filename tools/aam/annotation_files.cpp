@@ -100,8 +100,8 @@ Annotation readPts(std::istream& in, const std::string& name)
     }
     const auto close = lines.expect("\"}\" after " + std::to_string(n) + " points");
     if (close != std::vector<std::string>{"}"}) {
-        lines.fail("expected \"}\" after " + std::to_string(n) + " points, got \"" + joinedFields(close) +
-                   "\"");
+        lines.fail("expected \"}\" after " + std::to_string(n) + " points, got \"" +
+                   joinedFields(close) + "\"");
     }
     if (const auto extra = lines.next())
         lines.fail("unexpected data after \"}\": \"" + joinedFields(*extra) + "\"");
