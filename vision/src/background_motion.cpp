@@ -12,6 +12,12 @@ constexpr int kReplenishBelow = 40;
 /// Corners are at least this far apart (working pixels): spread over the view, so that its turn
 /// is measured and no single object holds most of them.
 constexpr float kSpacing = 12.f;
+/// A search of the whole image for new corners costs a fifth of the face stage, and a view whose
+/// background never yields kReplenishBelow corners (a face filling it, FGNet's; a plain wall)
+/// would ask for one every frame in vain: after a search the next waits this many frames, unless
+/// the last one had found enough corners for the fit (kMinInliers) and fewer are left (a cut, or
+/// something passing in front of them).
+constexpr int kSearchEvery = 8;
 
 /// Whether `p` is on a face or on the body of its person: the face's box grown to twice its side
 /// and everything below it (shoulders sway with the head, hair and collars move slowly with it:
@@ -43,6 +49,8 @@ void BackgroundMotion::reset() noexcept
 {
     count_ = 0;
     known_ = false;
+    sinceSearch_ = 0;
+    searchFilled_ = false;
 }
 
 void BackgroundMotion::update(const ImagePyramid* previous, const ImagePyramid& current,
@@ -58,8 +66,14 @@ void BackgroundMotion::update(const ImagePyramid* previous, const ImagePyramid& 
     count_ = previous != nullptr ? k : 0;
     if (count_ > 0)
         follow(*previous, current);
-    if (count_ < kReplenishBelow)
+    ++sinceSearch_;
+    const bool due = previous == nullptr || sinceSearch_ >= kSearchEvery ||
+                     (searchFilled_ && count_ < kMinInliers);
+    if (count_ < kReplenishBelow && due) {
         replenish(gray, faces);
+        sinceSearch_ = 0;
+        searchFilled_ = count_ >= kMinInliers;
+    }
 }
 
 void BackgroundMotion::follow(const ImagePyramid& previous, const ImagePyramid& current) noexcept

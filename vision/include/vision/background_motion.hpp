@@ -32,7 +32,7 @@ public:
 
     /// This frame: follows the corners from `previous` to `current` (null `previous`: the first
     /// frame), fits the view's motion, and finds new corners in `gray` away from `faces` when
-    /// too few are left.
+    /// too few are left (not every frame when a search finds too few).
     void update(const ImagePyramid* previous, const ImagePyramid& current,
                 const ConstImageView& gray, std::span<const Rect> faces) noexcept;
     /// How far the view carried image point `p` from the last frame to this one (zero when the
@@ -55,6 +55,8 @@ private:
     MotionModel model_{};
     bool known_ = false;
     int count_ = 0;
+    int sinceSearch_ = 0;        ///< frames since replenish() last ran
+    bool searchFilled_ = false;  ///< it left at least kMinInliers corners
     std::array<Point2f, kMaxCorners> points_{};
     std::array<Point2f, kMaxCorners> next_{};
     std::array<FlowStatus, kMaxCorners> status_{};
