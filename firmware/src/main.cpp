@@ -77,8 +77,7 @@ CLI::Validator frameCount()
             std::uint64_t value = 0;
             const char* end = text.data() + text.size();
             const auto [ptr, ec] = std::from_chars(text.data(), end, value);
-            if (text.empty() || ec != std::errc() || ptr != end || value > kMaxFrames)
-            {
+            if (text.empty() || ec != std::errc() || ptr != end || value > kMaxFrames) {
                 std::string shown = text.substr(0, 32);
                 for (char& c : shown)
                     if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f)
