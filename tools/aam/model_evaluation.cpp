@@ -13,14 +13,6 @@ namespace aam {
 
 namespace {
 
-Eigen::VectorXd asVector(const Shape2d& shape)
-{
-    Eigen::VectorXd v(2 * static_cast<Eigen::Index>(shape.size()));
-    for (std::size_t k = 0; k < shape.size(); ++k)
-        v.segment<2>(2 * static_cast<Eigen::Index>(k)) = shape[k];
-    return v;
-}
-
 void shapeResidual(const BuiltModel& model, const FittedImage& image, HeldOutResult& out)
 {
     const Similarity2d toMean =

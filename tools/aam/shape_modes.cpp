@@ -10,14 +10,6 @@ namespace aam {
 
 namespace {
 
-Eigen::VectorXd asVector(const Shape2d& shape)
-{
-    Eigen::VectorXd v(2 * static_cast<Eigen::Index>(shape.size()));
-    for (std::size_t k = 0; k < shape.size(); ++k)
-        v.segment<2>(2 * static_cast<Eigen::Index>(k)) = shape[k];
-    return v;
-}
-
 Eigen::MatrixXd covarianceAbout(const std::vector<Shape2d>& shapes, const Eigen::VectorXd& mean)
 {
     Eigen::MatrixXd deltas(mean.size(), static_cast<Eigen::Index>(shapes.size()));

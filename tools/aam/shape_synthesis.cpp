@@ -51,4 +51,12 @@ std::vector<Shape2d> synthesizeShapes(const vision::CandideMesh& face, const Can
     return shapes;
 }
 
+Eigen::VectorXd asVector(const Shape2d& shape)
+{
+    Eigen::VectorXd v(2 * static_cast<Eigen::Index>(shape.size()));
+    for (std::size_t k = 0; k < shape.size(); ++k)
+        v.segment<2>(2 * static_cast<Eigen::Index>(k)) = shape[k];
+    return v;
+}
+
 }  // namespace aam

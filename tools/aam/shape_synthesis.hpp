@@ -43,6 +43,9 @@ struct SynthesisOptions {
 /// A 2D shape: every vertex of the mesh, image pixels.
 using Shape2d = std::vector<Eigen::Vector2d>;
 
+/// The shape as one vector (x0, y0, x1, y1, ...), as the shape model's PCA and errors take it.
+Eigen::VectorXd asVector(const Shape2d& shape);
+
 /// The mesh under `fit` with yaw and pitch (radians; yaw about CANDIDE's y axis, positive turning
 /// the face to its left: the nose moves to the image's right; pitch about its x axis, positive
 /// turning the face down) and the animation values `tau` (the fit's shape units kept).
