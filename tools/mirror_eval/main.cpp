@@ -1,7 +1,9 @@
 // mirror-eval: evaluates the vision core on recorded or generated sequences with ground truth.
 // One sub-command per tracker: `card` (§2), `detect` and `track` (§3), `roll` (§4); and
-// `liveness`, the cues that tell a living face from a photograph (§3).
+// `liveness`, the cues that tell a living face from a photograph (§3); `aam`, the Active
+// Appearance Model fit (§5) beside dlib's shape predictor.
 
+#include "aam_eval.hpp"
 #include "card_eval.hpp"
 #include "detect_eval.hpp"
 #include "liveness_eval.hpp"
@@ -166,7 +168,45 @@ int main(int argc, char** argv)
     livenessCmd->add_option("--max-frames", liveness.maxFrames, "only the first N frames (0: all)");
     livenessCmd->add_flag("--per-window", liveness.perWindow, "one line per window and step count");
 
-    CLI11_PARSE(app, argc, argv);
+    mirror_eval::AamEvalOptions aam;
+    CLI::App* aamCmd = app.add_subcommand(
+        "aam",
+        "the AAM fit (§5) on an annotated sequence, on headgen's synthetic heads or on IMM's "
+        "turned heads, beside dlib's 68-point shape predictor given the same HOG boxes");
+    aamCmd->add_option("--frames", aam.frames, "folder of frames, in file-name order");
+    aamCmd->add_option("--truth", aam.truth, "folder of per-frame annotations (.pts / .asf)");
+    aamCmd->add_option("--scheme", aam.scheme, "the truth's scheme: fgnet, ibug or imm")
+        ->capture_default_str();
+    aamCmd->add_option("--synthetic", aam.synthetic, "a headgen output folder");
+    aamCmd->add_option("--imm", aam.imm, "the IMM face database folder (types 1, 3, 4)");
+    aamCmd->add_flag("--all-persons", aam.allPersons,
+                     "--imm: every person, also those the demo model was built from "
+                     "(person-specific)");
+    aamCmd->add_option("--fitter", aam.fitter, "our side: baseline (until vision's fit lands)")
+        ->capture_default_str();
+    aamCmd->add_option("--model", aam.model, "the .aam model file a real fit loads");
+    aamCmd->add_option("--data", aam.dataDir, "the shared data folder (CANDIDE-3, IMM)")
+        ->capture_default_str();
+    aamCmd->add_option("--predictor", aam.predictor, "dlib's 68-point shape predictor")
+        ->capture_default_str();
+    aamCmd->add_option("--upsample", aam.upsample, "HOG detector: pyramid_up passes (0-2)")
+        ->capture_default_str();
+    aamCmd->add_option("--start", aam.start, "first frame (index in file-name order)")
+        ->capture_default_str();
+    aamCmd->add_option("--max-frames", aam.maxFrames, "only the first N frames (0: all)");
+    aamCmd->add_flag("--per-frame", aam.perFrame, "one line per frame");
+
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::Success& e) {
+        return app.exit(e);
+    } catch (const CLI::ParseError& e) {
+        // A bad argument: one line, exit code 2 (as each sub-command's own checks).
+        std::fprintf(stderr, "mirror-eval: %s\n", e.what());
+        return 2;
+    }
+    if (aamCmd->parsed())
+        return mirror_eval::runAamEval(aam, stdout, stderr);
     if (cardCmd->parsed())
         return mirror_eval::runCardEval(card, stdout, stderr);
     if (detectCmd->parsed()) {
