@@ -201,7 +201,7 @@ int main(int argc, char** argv)
     } catch (const CLI::Success& e) {
         return app.exit(e);
     } catch (const CLI::ParseError& e) {
-        // A bad argument: one line, exit code 2 (as each sub-command's own checks).
+        // A bad argument (an unknown option, a missing value): one line, exit code 2.
         std::fprintf(stderr, "mirror-eval: %s\n", e.what());
         return 2;
     }
