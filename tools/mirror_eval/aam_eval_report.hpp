@@ -46,7 +46,8 @@ inline double p90OrNan(const ErrorStats& e)
 
 /// What one peer scored over a run.
 struct PeerScores {
-    PeerScores(std::string rowName = "") : name(std::move(rowName)) {}  // NOLINT: {"name"} reads
+    /// Implicit, so that a row is made from its name alone: PeerScores ours{"aam fit"}.
+    PeerScores(std::string rowName = "") : name(std::move(rowName)) {}
 
     std::string name;
     ErrorStats nme{"nme", {}}, nmeAll{"nme_all", {}};
