@@ -175,6 +175,7 @@ std::vector<OverlayVertex> readObjTriangles(const std::string& path, const std::
         throw std::runtime_error("OBJ " + shownPath + ": " + firstLine(reader.Error()));
     const ObjFile obj{reader.GetAttrib(), shownPath};
 
+    constexpr auto kTriangleBudget = static_cast<std::size_t>(vision::limits::kMaxOverlayTriangles);
     std::vector<bool> used(objects.size(), false);
     std::vector<OverlayVertex> vertices;
     bool anyArea = false;
@@ -194,6 +195,11 @@ std::vector<OverlayVertex> readObjTriangles(const std::string& path, const std::
                     std::memcpy(v.normal, n, sizeof(n));  // flat normal where the file has none
                 vertices.push_back(v);
             }
+            // One mesh over the whole overlay's budget is refused as soon as it is seen: a file
+            // of millions of faces then costs no more than its parse.
+            if (vertices.size() / 3 > kTriangleBudget)
+                obj.fail("more than " + std::to_string(kTriangleBudget) +
+                         " triangles, the budget of one overlay (all its meshes)");
         }
     }
     for (std::size_t i = 0; i < objects.size(); ++i)

@@ -116,10 +116,27 @@ TEST(OverlayInputBounds, AnOverlayOverTheTriangleBudgetIsRefused)
     };
     const int budget = vision::limits::kMaxOverlayTriangles;
     EXPECT_EQ(loadError("budget", strip(budget)), "");
-    const std::string e = loadError("over_budget", strip(budget + 1));
-    EXPECT_NE(e.find(std::to_string(budget + 1) + " triangles, over the budget of " +
+    // Two meshes within the budget each, over it together.
+    const std::string e = loadError("over_budget", strip(budget / 2 + 1),
+                                    "  [[overlay.mesh]]\n  obj = \"mesh.obj\"\n");
+    EXPECT_NE(e.find(std::to_string(budget + 2) + " triangles, over the budget of " +
                      std::to_string(budget) + " per overlay"),
               std::string::npos)
+        << e;
+}
+
+TEST(OverlayInputBounds, AMeshOverTheBudgetIsRefusedWhileItIsRead)
+{
+    // 200,000 triangles of one repeated face: refused by the OBJ reader at the first triangle
+    // over the budget, not after all of them are made into vertices and indexed.
+    std::string obj = "v 0 0 0\nv 1 0 0\nv 0 1 0\n";
+    for (int i = 0; i < 200000; ++i)
+        obj += "f 1 2 3\n";
+    const std::string e = loadError("mesh_over_budget", obj);
+    EXPECT_NE(
+        e.find("OBJ mesh.obj: more than " + std::to_string(vision::limits::kMaxOverlayTriangles) +
+               " triangles, the budget of one overlay"),
+        std::string::npos)
         << e;
 }
 
