@@ -6,6 +6,7 @@
 #include "detect_eval.hpp"
 #include "liveness_eval.hpp"
 #include "roll_eval.hpp"
+#include "tool_cli.hpp"
 #include "track_eval.hpp"
 
 #include <CLI/CLI.hpp>
@@ -15,6 +16,7 @@ int main(int argc, char** argv)
 {
     CLI::App app{"mirror-eval: scores the vision core against ground truth"};
     app.require_subcommand(1);
+    tool_cli::addVersion(app, "mirror-eval");
 
     mirror_eval::CardEvalOptions card;
     CLI::App* cardCmd =
@@ -166,7 +168,8 @@ int main(int argc, char** argv)
     livenessCmd->add_option("--max-frames", liveness.maxFrames, "only the first N frames (0: all)");
     livenessCmd->add_flag("--per-window", liveness.perWindow, "one line per window and step count");
 
-    CLI11_PARSE(app, argc, argv);
+    if (const int code = tool_cli::parse(app, argc, argv); code >= 0)
+        return code;
     if (cardCmd->parsed())
         return mirror_eval::runCardEval(card, stdout, stderr);
     if (detectCmd->parsed()) {
