@@ -55,18 +55,25 @@ std::string readFile(const std::string& path)
     return s.str();
 }
 
-TEST(SourceLoss, CalmScreenWhileLostOneLogLineEachWayAndBackToFrames)
+/// A small headless mirror without card and faces, its output in a fresh folder `out`.
+firmware::Config lossConfig(const std::string& name, const std::string& out, double summaryS)
 {
     firmware::Config config;
-    const std::string out = testing_support::freshOutputDir("source_loss");
     config.display.spec = "headless:" + out;
     config.display.width = 320;
     config.display.height = 240;
     config.display.snapshotEvery = 0;
     config.card.enabled = false;
     config.faces.enabled = false;
-    config.log.summaryIntervalS = 0;
-    config.state.dir = testing_support::freshOutputDir("source_loss_state");
+    config.log.summaryIntervalS = summaryS;
+    config.state.dir = testing_support::freshOutputDir(name + "_state");
+    return config;
+}
+
+TEST(SourceLoss, CalmScreenWhileLostOneLogLineEachWayAndBackToFrames)
+{
+    const std::string out = testing_support::freshOutputDir("source_loss");
+    const firmware::Config config = lossConfig("source_loss", out, 0);
     const std::string logPath = out + "/log.txt";
     const int logFd = ::open(logPath.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
     firmware::setLogFd(logFd);
@@ -134,16 +141,8 @@ TEST(SourceLoss, TheSummaryDoesNotPushTheCauseOutOfTheLog)
 {
     // Twenty summaries' worth of time without a camera: the ring keeps the loss, not twenty
     // identical "frames=0" lines (one is logged; summary.log keeps every one).
-    firmware::Config config;
     const std::string out = testing_support::freshOutputDir("source_loss_summary");
-    config.display.spec = "headless:" + out;
-    config.display.width = 160;
-    config.display.height = 120;
-    config.display.snapshotEvery = 0;
-    config.card.enabled = false;
-    config.faces.enabled = false;
-    config.log.summaryIntervalS = 0.05;
-    config.state.dir = testing_support::freshOutputDir("source_loss_summary_state");
+    const firmware::Config config = lossConfig("source_loss_summary", out, 0.05);
     const int logFd = ::open((out + "/log.txt").c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
     firmware::setLogFd(logFd);
     auto source = std::make_unique<FlakySource>();
