@@ -92,6 +92,13 @@ CLI::Validator frameCount()
         "N");
 }
 
+/// Where a line that ends the process goes: standard error, as an error on the journal (its "<3>"
+/// priority prefix) so that `journalctl -u mirror -p err` shows why the service stopped.
+std::ostream& fatal()
+{
+    return std::cerr << (firmware::logsToJournal() ? "<3>" : "");
+}
+
 /// How long `mirror --bug-report` runs the mirror before it writes the report: the camera has
 /// delivered and the selftest has something to say.
 constexpr double kBugReportRunS = 3.0;
@@ -261,7 +268,7 @@ int main(int argc, char** argv)
         config = firmware::loadConfig(request);
     } catch (const firmware::ConfigError& e) {
         for (const auto& problem : e.problems())
-            std::cerr << problem.format() << '\n';
+            fatal() << problem.format() << '\n';
         return firmware::kExitConfig;
     }
     if (printConfig) {
@@ -325,12 +332,12 @@ int main(int argc, char** argv)
             MIRROR_LOG_INFO("reboot-mirror: rebuilding the pipeline");
         }
     } catch (const firmware::StartupError& e) {
-        std::cerr << "mirror: " << e.what() << '\n';
+        fatal() << "mirror: " << e.what() << '\n';
         if (!bugReport.empty())
             return startupBugReport(bugReport, config, e.what());
         return e.exitCode();
     } catch (const std::exception& e) {
-        std::cerr << "mirror: " << e.what() << '\n';
+        fatal() << "mirror: " << e.what() << '\n';
         if (!bugReport.empty())
             return startupBugReport(bugReport, config, e.what());
         return firmware::kExitPipeline;
