@@ -200,7 +200,8 @@ const KeySpec kSchema[] = {
      .kind = Kind::Float,
      .min = 0,
      .max = 3600,
-     .doc = "Seconds between one-line summaries (frames, fps, per-stage ms); 0 = off",
+     .doc = "Seconds between one-line summaries (frames, fps, per-stage ms), to the log when "
+            "the rate changed by a quarter or once a minute; 0 = off",
      .set = [](Config& c, const Value& v) { c.log.summaryIntervalS = asDouble(v); },
      .get = [](const Config& c) -> Value { return c.log.summaryIntervalS; }},
     // [console]

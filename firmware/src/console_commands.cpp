@@ -14,44 +14,69 @@ namespace firmware {
 
 namespace {
 
+/// `log [error|warn|info|debug] [N]`: the last N lines (default 20) at that level or worse.
 void logCommand(const Args& args, Reply& reply) noexcept
 {
-    int n = 20;
-    if (args.size() == 2) {
-        int v = 0;
-        const auto [end, ec] = std::from_chars(args[1].data(), args[1].data() + args[1].size(), v);
-        if (ec != std::errc() || end != args[1].data() + args[1].size()) {
-            reply.printf("error: usage: log [N]\n");
-            return;
-        }
-        n = std::clamp(v, 1, kLogRingLines);
-    } else if (args.size() > 2) {
-        reply.printf("error: usage: log [N]\n");
+    long n = 20;
+    LogLevel atLeast = LogLevel::Debug;
+    std::size_t i = 1;
+    if (const int level = args.choice(i, {"error", "warn", "info", "debug"}); level >= 0) {
+        atLeast = static_cast<LogLevel>(level);
+        ++i;
+    }
+    if (i < args.size() && !args.number(i, 1, kLogRingLines, n)) {
+        reply.usageError("N must be 1..%d, got '%.*s'", kLogRingLines, Args::shown(args[i]),
+                         args[i].data());
         return;
     }
-    forEachRecentLogLine(
-        n, [](const char* line, void* context) { static_cast<Reply*>(context)->append(line); },
-        &reply);
+    if (i + 1 < args.size()) {
+        reply.usageError("unexpected '%.*s'", Args::shown(args[i + 1]), args[i + 1].data());
+        return;
+    }
+    const int count = forEachRecentLogLine(
+        static_cast<int>(n),
+        [](const char* line, void* context) { static_cast<Reply*>(context)->append(line); }, &reply,
+        atLeast);
+    if (count == 0)
+        reply.line("log: no lines at that level");
+}
+
+/// `text` as a JSON string: quotes, backslashes and control characters escaped.
+void jsonString(Reply& reply, const char* text) noexcept
+{
+    reply.append("\"");
+    for (const char* c = text; *c; ++c) {
+        if (*c == '"' || *c == '\\')
+            reply.printf("\\%c", *c);
+        else if (static_cast<unsigned char>(*c) < 0x20 || *c == 0x7f)
+            reply.printf("\\u%04x", static_cast<unsigned char>(*c));
+        else
+            reply.append({c, 1});
+    }
+    reply.append("\"");
 }
 
 }  // namespace
 
 void FrameLoop::registerCommands()
 {
-    shell_.add("status", "status", "uptime, frames, fps, per-stage p50/p99 ms, source, display",
-               [this](const Args&, Reply& reply) noexcept { formatStatus(reply); });
-    shell_.add("snapshot", "snapshot", "write a PNG of the next frame shown",
-               [this](const Args&, Reply& reply) noexcept {
-                   if (display_->requestSnapshot()) {
-                       snapshotReplyPending_ = true;
-                       reply.printf("snapshot: requested\n");
-                   } else {
-                       reply.printf("error: this display cannot take snapshots\n");
-                   }
+    shell_.add("status", "status [--json]",
+               "uptime, frames, fps, per-stage p50/p99 ms, source, display; --json for tools",
+               [this](const Args& args, Reply& reply) noexcept {
+                   if (args.size() == 1)
+                       formatStatus(reply);
+                   else if (args[1] == "--json")
+                       formatStatusJson(reply);
+                   else
+                       reply.usageError("unknown option '%.*s'", Args::shown(args[1]),
+                                        args[1].data());
                });
+    shell_.add("snapshot", "snapshot", "write a PNG of the next frame shown; says its path",
+               [this](const Args&, Reply& reply) noexcept { snapshotCommand(reply); });
     shell_.add("config", "config", "print the effective configuration (TOML)",
                [this](const Args&, Reply& reply) noexcept {
-                   reply.printf("# from %s\n%s", config_.origin.c_str(), configToml_.c_str());
+                   reply.printf("# from %s\n", config_.origin.c_str());
+                   reply.append(configToml_);
                });
     if (card_)
         shell_.add(
@@ -66,17 +91,21 @@ void FrameLoop::registerCommands()
         shell_.add("debug", "debug [on|off]",
                    "show or hide the face debug HUD (boxes, corners, roll)",
                    [this](const Args& args, Reply& reply) noexcept {
-                       if (args.size() == 2 && (args[1] == "on" || args[1] == "off")) {
-                           setDebugHud(args[1] == "on");
-                       } else if (args.size() != 1) {
-                           reply.printf("error: usage: debug [on|off]\n");
-                           return;
+                       if (args.size() == 2) {
+                           const int on = args.choice(1, {"off", "on"});
+                           if (on < 0) {
+                               reply.usageError("expected on or off, got '%.*s'",
+                                                Args::shown(args[1]), args[1].data());
+                               return;
+                           }
+                           setDebugHud(on == 1);
                        }
                        reply.printf("debug: %s\n", debugHud() ? "on" : "off");
                    });
     }
-    shell_.add("overlay", "overlay [next|prev|off|list|NAME|mode global|per_face]",
-               "what the faces wear: show, change, list the catalogue, global or per-face choice",
+    shell_.add("overlay", "overlay [next|prev|off|list|NAME|N|mode global|per_face]",
+               "what the faces wear: show, change (by name or by the number `overlay list` "
+               "prints), list the catalogue, one choice for all or one per face",
                [this](const Args& args, Reply& reply) noexcept {
                    overlays_->command(args, state_.faces, reply);
                });
@@ -88,7 +117,13 @@ void FrameLoop::registerCommands()
                    const int failed = selfTest(reply);
                    reply.printf("selftest: %s\n", failed == 0 ? "all PASS" : "FAILED");
                });
-    shell_.add("log", "log [N]", "the last N log lines (default 20) from memory", logCommand);
+    shell_.add("log", "log [error|warn|info|debug] [N]",
+               "the last N log lines (default 20) from memory, or only those at a level or worse",
+               logCommand);
+    shell_.add("bug-report", "bug-report [PATH]",
+               "write a tarball for a developer: version, status, selftest, config, log, "
+               "devices, a snapshot, the journal (default: in the state folder)",
+               [this](const Args& args, Reply& reply) noexcept { bugReportCommand(args, reply); });
     shell_.add("version", "version", "firmware version and build",
                [](const Args&, Reply& reply) noexcept {
                    reply.printf("mirror %s (built %s %s, %s)\n", MIRROR_VERSION, __DATE__, __TIME__,
@@ -108,6 +143,25 @@ void FrameLoop::registerCommands()
                });
 }
 
+void FrameLoop::snapshotCommand(Reply& reply) noexcept
+{
+    if (!display_->requestSnapshot()) {
+        reply.printf("error: this display cannot take snapshots\n");
+        return;
+    }
+    snapshotReplyPending_ = true;
+    // The display names the file when it writes it (its frame number): say where it will go now,
+    // and the whole path once the next frame shown is written.
+    const char* dir = display_->outputDir();
+    const char* last = display_->lastSnapshot();
+    if (*dir)
+        reply.printf("snapshot: writing the next frame shown to %s/snapshot-NNNNNN.png\n", dir);
+    else if (*last)
+        reply.printf("snapshot: writing the next frame shown beside %s\n", last);
+    else
+        reply.printf("snapshot: writing the next frame shown\n");
+}
+
 void FrameLoop::formatStatus(Reply& reply) const noexcept
 {
     reply.printf("uptime %.1f s, frames %llu, fps %.1f, bad frames %llu\n", uptimeSeconds(),
@@ -125,6 +179,39 @@ void FrameLoop::formatStatus(Reply& reply) const noexcept
         reply.printf("%-14s %8.2f %8.2f %8.2f\n", timings_[i].name, h.percentileMs(0.5),
                      h.percentileMs(0.99), h.meanMs());
     }
+}
+
+void FrameLoop::formatStatusJson(Reply& reply) const noexcept
+{
+    // One line, keys in a fixed order; times in seconds and milliseconds as the text says.
+    reply.printf(
+        "{\"version\":\"%s\",\"uptime_s\":%.1f,\"frames\":%llu,\"fps\":%.1f,"
+        "\"bad_frames\":%llu,\"source\":{\"description\":",
+        MIRROR_VERSION, uptimeSeconds(), static_cast<unsigned long long>(framesShown_), fps_,
+        static_cast<unsigned long long>(badFrames_));
+    jsonString(reply, source_->description());
+    reply.printf(",\"lost\":%s,\"error\":", sourceLost_ ? "true" : "false");
+    jsonString(reply, sourceLost_ ? source_->lastError() : "");
+    reply.append("},\"display\":{\"description\":");
+    jsonString(reply, display_->description());
+    reply.printf(",\"width\":%d,\"height\":%d,\"unavailable\":%s,\"error\":", display_->width(),
+                 display_->height(), displayDown_ ? "true" : "false");
+    jsonString(reply, displayDown_ ? display_->lastError() : "");
+    reply.append("}");
+    if (card_)
+        reply.printf(",\"card\":{\"state\":\"%s\",\"confidence\":%.2f}",
+                     vision::cardStateName(card_->state()),
+                     static_cast<double>(card_->confidence()));
+    if (faces_)
+        reply.printf(",\"faces\":{\"shown\":%d}", faces_->shown());
+    reply.append(",\"stages\":[");
+    for (std::size_t i = 0; i < stepCount_; ++i) {
+        const LatencyHistogram& h = timings_[i].total;
+        reply.printf("%s{\"name\":\"%s\",\"p50_ms\":%.3f,\"p99_ms\":%.3f,\"mean_ms\":%.3f}",
+                     i ? "," : "", timings_[i].name, h.percentileMs(0.5), h.percentileMs(0.99),
+                     h.meanMs());
+    }
+    reply.append("]}\n");
 }
 
 void FrameLoop::buttonsCommand(Reply& reply) noexcept

@@ -1,5 +1,6 @@
 #include "firmware/frame_loop.hpp"
 
+#include "bug_report.hpp"
 #include "card_control.hpp"
 #include "face_control.hpp"
 #include "firmware/exit_codes.hpp"
@@ -14,7 +15,9 @@
 #include <algorithm>
 #include <cerrno>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <stdexcept>
 #include <thread>
@@ -43,7 +46,10 @@ FrameLoop::FrameLoop(const Config& config, std::unique_ptr<platform::FrameSource
       configToml_(toToml(config)),
       source_(std::move(source)),
       display_(std::move(display)),
-      shell_(config.console.maxLineLength)
+      shell_(ShellOptions{
+          .maxLineLength = static_cast<std::size_t>(config.console.maxLineLength),
+          // The longest reply: the whole config, or the whole log ring.
+          .replyCapacity = std::max(Reply::kDefaultCapacity, configToml_.size() + 4096)})
 {
     const vision::Size size = source_->size();
     const vision::PixelFormat format = source_->format();
@@ -78,6 +84,11 @@ FrameLoop::FrameLoop(const Config& config, std::unique_ptr<platform::FrameSource
         if (summaryFd_ < 0)
             throw std::runtime_error("cannot write " + path + ": " + std::strerror(errno));
     }
+    for (const std::size_t capacity :
+         {std::size_t{16384}, std::size_t{16384}, std::size_t{16384}, configToml_.size() + 4096,
+          std::size_t{kLogRingLines} * 512 + 1024})
+        bugTexts_.emplace_back(capacity);
+    bugReports_ = std::make_unique<BugReportWorker>();
     registerCommands();
 }
 
@@ -295,19 +306,29 @@ std::int64_t FrameLoop::present() noexcept
         }
         ++intervalFrames_;
     }
-    if (snapshotReplyPending_) {
-        char line[512];
-        std::snprintf(line, sizeof line, "snapshot: %s\n",
-                      *display_->lastSnapshot() ? display_->lastSnapshot() : display_->lastError());
-        tellConsoles(line);
-        snapshotReplyPending_ = false;
-    }
+    afterPresent();
     return t3;
+}
+
+void FrameLoop::afterPresent() noexcept
+{
+    if (bugSnapshotWanted_)
+        startBugReport(display_->lastSnapshot());
+    if (!snapshotReplyPending_)
+        return;
+    char line[512];
+    if (*display_->lastSnapshot())
+        std::snprintf(line, sizeof line, "snapshot: wrote %s\n", display_->lastSnapshot());
+    else
+        std::snprintf(line, sizeof line, "snapshot: failed: %s\n", display_->lastError());
+    tellConsoles(line);
+    snapshotReplyPending_ = false;
 }
 
 bool FrameLoop::finishIteration(std::int64_t now) noexcept
 {
     updateRate(now);
+    serviceBugReport(now);
     return true;
 }
 
@@ -320,9 +341,14 @@ void FrameLoop::showSourceLost(std::int64_t now) noexcept
     lostScreenNs_ = now;
     if (!display_->beginFrame())
         return;
+    // The calm screen is a frame shown: `selftest` must not blame the display for the camera,
+    // and a snapshot asked for meanwhile is of this screen.
     if (renderer_->drawMessage("camera unavailable\nreconnecting ...", display_->width(),
-                               display_->height()))
-        display_->present();
+                               display_->height()) &&
+        display_->present()) {
+        lastPresentNs_ = monotonicNs();
+        afterPresent();
+    }
 }
 
 void FrameLoop::tellConsoles(const char* text) noexcept
@@ -366,6 +392,20 @@ void FrameLoop::updateRate(std::int64_t now) noexcept
     intervalStartNs_ = now;
 }
 
+/// Whether this summary goes to the log: the first, one whose frame rate moved by a quarter or
+/// more since the last logged (a camera lost or back, a stall), else one a minute. The log ring
+/// then keeps the causes, not sixty identical lines; summary.log keeps every one.
+bool FrameLoop::summaryWorthLogging(std::int64_t nowNs) noexcept
+{
+    constexpr std::int64_t kQuietNs = 60'000'000'000;
+    const bool changed = std::abs(fps_ - loggedFps_) > 0.25 * std::max(loggedFps_, 1.0);
+    if (loggedSummaryNs_ != 0 && !changed && nowNs - loggedSummaryNs_ < kQuietNs)
+        return false;
+    loggedSummaryNs_ = nowNs;
+    loggedFps_ = fps_;
+    return true;
+}
+
 void FrameLoop::writeSummary() noexcept
 {
     char line[768];
@@ -379,7 +419,7 @@ void FrameLoop::writeSummary() noexcept
     }
     if (n < static_cast<int>(sizeof line))
         std::snprintf(line + n, sizeof line - static_cast<std::size_t>(n), " (p50/p99 ms)");
-    MIRROR_LOG_INFO("%s", line);
+    logf(summaryWorthLogging(monotonicNs()) ? LogLevel::Info : LogLevel::Debug, "%s", line);
     if (summaryFd_ >= 0) {
         const std::size_t len = std::strlen(line);
         line[len] = '\n';

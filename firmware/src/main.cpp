@@ -2,12 +2,14 @@
 // source and the display, and runs the frame loop. Every start-up failure is caught here, once,
 // and printed as one line with a distinct exit code (firmware/exit_codes.hpp).
 
+#include "bug_report.hpp"
 #include "firmware/config.hpp"
 #include "firmware/device_factory.hpp"
 #include "firmware/exit_codes.hpp"
 #include "firmware/frame_loop.hpp"
 #include "firmware/log.hpp"
 #include "firmware/startup_error.hpp"
+#include "platform/camera_list.hpp"
 #include "platform/serial_console.hpp"
 #include "platform/stdin_console.hpp"
 
@@ -90,6 +92,50 @@ CLI::Validator frameCount()
         "N");
 }
 
+/// Where a line that ends the process goes: standard error, as an error on the journal (its "<3>"
+/// priority prefix) so that `journalctl -u mirror -p err` shows why the service stopped.
+std::ostream& fatal()
+{
+    return std::cerr << (firmware::logsToJournal() ? "<3>" : "");
+}
+
+/// How long `mirror --bug-report` runs the mirror before it writes the report: the camera has
+/// delivered and the selftest has something to say.
+constexpr double kBugReportRunS = 3.0;
+
+/// This executable's path, for running it again (the bug report's camera list).
+std::string programPath()
+{
+    char path[4096];
+    const ssize_t n = ::readlink("/proc/self/exe", path, sizeof path - 1);
+    return n > 0 ? std::string(path, static_cast<std::size_t>(n)) : std::string();
+}
+
+/// `mirror --bug-report` when the mirror could not start (a camera in use by the running service,
+/// no display): the report holds what there is, the start-up error first.
+int startupBugReport(const std::string& path, const firmware::Config& config, const char* error)
+{
+    const std::string version =
+        "mirror " MIRROR_VERSION "\nstart-up failed: " + std::string(error) +
+        "\n(no status, selftest or snapshot: the mirror did not run; if "
+        "the service holds the devices, use the console's bug-report)\n";
+    std::string log;
+    firmware::forEachRecentLogLine(
+        firmware::kLogRingLines,
+        [](const char* line, void* context) { static_cast<std::string*>(context)->append(line); },
+        &log);
+    const std::string toml = "# from " + config.origin + "\n" + firmware::toToml(config);
+    const firmware::BugReportFile files[] = {
+        {"status.txt", version}, {"config.toml", toml}, {"log.txt", log}};
+    const std::string problem = firmware::writeBugReport(files, "", path, programPath());
+    if (!problem.empty()) {
+        std::cerr << "mirror: bug report: " << problem << '\n';
+        return firmware::kExitInternal;
+    }
+    std::cerr << "mirror: wrote the bug report " << path << " (without a running mirror)\n";
+    return firmware::kExitOk;
+}
+
 extern "C" void onStopSignal(int signal)
 {
     if (firmware::FrameLoop* loop = gLoop.load()) {
@@ -129,9 +175,16 @@ Displays (--display, [display] spec):
 
 Diagnostics console (on standard input when [console] stdin = true, and on the serial port
 [console] serial, e.g. /dev/ttyS0 at 115200 8N1):
-  help, status, selftest, log [N], version, snapshot, config, faces, debug [on|off],
-  overlay [next|prev|off|list|NAME|mode global|per_face], buttons, card [train|reset],
-  reboot-mirror (rebuilds the pipeline, not the machine), quit
+  help [COMMAND], status [--json], selftest, log [error|warn|info|debug] [N], version,
+  snapshot, config, faces, debug [on|off], overlay [next|prev|off|list|NAME|N|mode
+  global|per_face], buttons, card [train|reset], bug-report [PATH], reboot-mirror (rebuilds the
+  pipeline, not the machine), quit. Long replies are streamed whole, never cut.
+
+Field tools:
+  mirror --list-cameras        the cameras (libcamera, V4L2) with their formats and sizes
+  mirror --bug-report FILE     runs the mirror for 3 s and writes a tarball for a developer;
+                               the console's bug-report does the same in a running mirror
+  Under systemd the log lines carry journald priorities: journalctl -u mirror -p warning
 
 Overlays ([overlay]): hats and glasses from the catalogue (default: the installed
   /usr/share/mirror/overlays/catalogue.toml, or assets/overlays/ of the source tree). Each entry
@@ -171,6 +224,8 @@ int main(int argc, char** argv)
     std::string display;
     std::uint64_t frames = 0;
     std::vector<std::string> sets;
+    bool listCameras = false;
+    std::string bugReport;
     app.add_option("-c,--config", configPath,
                    std::string("config file (default ") + firmware::kDefaultConfigPath +
                        "; built-in defaults when that is absent)");
@@ -180,12 +235,23 @@ int main(int argc, char** argv)
     app.add_option("-n,--frames", frames, "stop after N frames (0 = run until stopped)")
         ->check(frameCount());
     app.add_option("--set", sets, "override one config key: --set display.hud=false (TOML value)");
+    app.add_flag("--list-cameras", listCameras,
+                 "list the cameras (libcamera and V4L2) with their formats and sizes, and exit");
+    app.add_option("--bug-report", bugReport,
+                   "run the mirror for a few seconds, write a bug report tarball to FILE (version, "
+                   "status, selftest, config, log, devices, a snapshot, the journal) and exit");
 
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
         const int code = app.exit(e);
         return code == 0 ? firmware::kExitOk : firmware::kExitConfig;
+    }
+
+    if (listCameras) {
+        if (platform::listCameras(stdout) == 0)
+            std::printf("no cameras found\n");
+        return firmware::kExitOk;
     }
 
     firmware::ConfigRequest request;
@@ -202,7 +268,7 @@ int main(int argc, char** argv)
         config = firmware::loadConfig(request);
     } catch (const firmware::ConfigError& e) {
         for (const auto& problem : e.problems())
-            std::cerr << problem.format() << '\n';
+            fatal() << problem.format() << '\n';
         return firmware::kExitConfig;
     }
     if (printConfig) {
@@ -214,9 +280,10 @@ int main(int argc, char** argv)
     firmware::setLogLevel(config.log.level);
     // Under systemd the working directory is /: a relative folder is rarely what was meant.
     if (!config.state.dir.empty() && config.state.dir.front() != '/')
-        MIRROR_LOG_WARN("state: state.dir \"%s\" is relative, so it is under the working "
-                        "directory; an installed mirror wants an absolute path",
-                        config.state.dir.c_str());
+        MIRROR_LOG_WARN(
+            "state: state.dir \"%s\" is relative, so it is under the working "
+            "directory; an installed mirror wants an absolute path",
+            config.state.dir.c_str());
     std::signal(SIGPIPE, SIG_IGN);
     try {
         std::unique_ptr<platform::StdinConsole> console;
@@ -244,13 +311,18 @@ int main(int argc, char** argv)
             auto frameDisplay = firmware::makeDisplay(config.display, config.state.dir);
             firmware::FrameLoop loop(config, std::move(frameSource), std::move(frameDisplay));
             if (console)
-                loop.attachConsole(console.get());
+                loop.attachConsole(console.get(), ::isatty(0) == 1);
             if (serial)
                 loop.attachSerialConsole(serial.get());
             loop.attachButtons(firmware::makeButtons(config.buttons));
+            loop.setProgramPath(programPath());
+            if (!bugReport.empty())
+                loop.scheduleBugReport(bugReport, kBugReportRunS);
             gLoop = &loop;
             const int code = loop.run(frames);
             gLoop = nullptr;
+            if (!bugReport.empty())
+                return loop.bugReportFailed() ? firmware::kExitInternal : code;
             // A process whose camera libcamera had to park must not run static destructors
             // while the parked camera's thread still runs (docs/DEVICES.md): leave at once.
             if (loop.processRestartRequired())
@@ -260,10 +332,14 @@ int main(int argc, char** argv)
             MIRROR_LOG_INFO("reboot-mirror: rebuilding the pipeline");
         }
     } catch (const firmware::StartupError& e) {
-        std::cerr << "mirror: " << e.what() << '\n';
+        fatal() << "mirror: " << e.what() << '\n';
+        if (!bugReport.empty())
+            return startupBugReport(bugReport, config, e.what());
         return e.exitCode();
     } catch (const std::exception& e) {
-        std::cerr << "mirror: " << e.what() << '\n';
+        fatal() << "mirror: " << e.what() << '\n';
+        if (!bugReport.empty())
+            return startupBugReport(bugReport, config, e.what());
         return firmware::kExitPipeline;
     }
 }

@@ -174,16 +174,10 @@ void OverlayControl::command(const Args& args, std::span<const vision::TrackedFa
         format(faces, reply);
         return;
     }
-    if (args.size() == 2 && what == "list") {
-        for (int i = 0; i < selection_->size(); ++i)
-            reply.printf("%d %s%s\n", i + 1, selection_->name(i),
-                         i == selection_->selected() ? " *" : "");
-        return;
-    }
-    if (args.size() == 3 && what == "mode") {
+    if (what == "mode") {
         OverlayMode mode{};
         if (!parseOverlayMode(args[2], mode)) {
-            reply.printf("error: usage: overlay mode global|per_face\n");
+            reply.usageError("mode needs global or per_face");
             return;
         }
         selection_->setMode(mode);
@@ -191,9 +185,16 @@ void OverlayControl::command(const Args& args, std::span<const vision::TrackedFa
         return;
     }
     if (args.size() != 2) {
-        reply.printf("error: usage: overlay [next|prev|off|list|NAME|mode global|per_face]\n");
+        reply.usageError("unexpected '%.*s'", Args::shown(args[2]), args[2].data());
         return;
     }
+    if (what == "list") {
+        for (int i = 0; i < selection_->size(); ++i)
+            reply.printf("%d %s%s\n", i + 1, selection_->name(i),
+                         i == selection_->selected() ? " *" : "");
+        return;
+    }
+    long number = 0;
     if (what == "next")
         change = selection_->next();
     else if (what == "prev")
@@ -201,9 +202,13 @@ void OverlayControl::command(const Args& args, std::span<const vision::TrackedFa
     else if (what == "off")
         change = selection_->off();
     else if (!selection_->select(what, &change)) {
-        reply.printf("error: no overlay '%.*s' (overlay list)\n", static_cast<int>(what.size()),
-                     what.data());
-        return;
+        // Not a name: the number `overlay list` prints before it.
+        if (!args.number(1, 1, selection_->size(), number)) {
+            reply.usageError("no overlay '%.*s' (overlay list: names and numbers 1..%d)",
+                             Args::shown(what), what.data(), selection_->size());
+            return;
+        }
+        selection_->select(static_cast<int>(number) - 1, &change);
     }
     if (change.faceId != 0)
         reply.printf("overlay: face %d wears %s\n", change.faceId,

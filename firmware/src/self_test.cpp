@@ -50,10 +50,15 @@ int FrameLoop::selfTest(Reply& reply) const noexcept
     const std::int64_t kRecent = std::max<std::int64_t>(2'000'000'000, 4 * frameIntervalNs_);
     const bool frames = lastFrameNs_ != 0 && now - lastFrameNs_ < kRecent && !sourceLost_;
     check(frames, "camera", "%s, %s", source_->description(),
-          frames ? "delivering frames" : (sourceLost_ ? source_->lastError() : "no recent frame"));
+          frames        ? "delivering frames"
+          : sourceLost_ ? (*source_->lastError() ? source_->lastError() : "lost")
+                        : "no recent frame");
     const bool shown = lastPresentNs_ != 0 && now - lastPresentNs_ < kRecent && !displayDown_;
     check(shown, "display", "%s, %dx%d, %s", display_->description(), display_->width(),
-          display_->height(), shown ? "showing frames" : display_->lastError());
+          display_->height(),
+          shown                    ? "showing frames"
+          : *display_->lastError() ? display_->lastError()
+                                   : "no frame shown recently");
 
     int error = 0;
     const bool writable = probeWritable(config_.state.dir, error);

@@ -15,10 +15,9 @@ namespace platform {
 speed_t serialSpeed(int baud) noexcept
 {
     // termios names each standard rate by its own constant, in the order of kSerialBaudRates.
-    static constexpr speed_t kSpeeds[] = {B9600,    B19200,   B38400,   B57600,   B115200,
-                                          B230400,  B460800,  B500000,  B576000,  B921600,
-                                          B1000000, B1152000, B1500000, B2000000, B2500000,
-                                          B3000000, B3500000, B4000000};
+    static constexpr speed_t kSpeeds[] = {
+        B9600,   B19200,   B38400,   B57600,   B115200,  B230400,  B460800,  B500000,  B576000,
+        B921600, B1000000, B1152000, B1500000, B2000000, B2500000, B3000000, B3500000, B4000000};
     static_assert(std::size(kSpeeds) == kSerialBaudRates.size());
     const auto* found = std::find(kSerialBaudRates.begin(), kSerialBaudRates.end(), baud);
     return found == kSerialBaudRates.end() ? 0 : kSpeeds[found - kSerialBaudRates.begin()];
@@ -209,6 +208,12 @@ void SerialConsole::flush() noexcept
         return;
     }
     head_ = 0;
+}
+
+std::size_t SerialConsole::writable() noexcept
+{
+    flush();
+    return options_.outputBuffer - queued_;
 }
 
 void SerialConsole::write(std::string_view text) noexcept

@@ -13,6 +13,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <cstring>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
@@ -134,6 +135,17 @@ long StdinConsole::writeSome(const char* data, std::size_t size) noexcept
         return static_cast<long>(n);
     }
     return static_cast<long>(writeWithoutSigpipe(outFd_, data, size));
+}
+
+std::size_t StdinConsole::writable() noexcept
+{
+    const int revents = pollNow(outFd_, POLLOUT);
+    // A broken output takes everything (write() drops and counts it): a reply must not wait for
+    // a reader that went away.
+    if (revents < 0 || (revents & (POLLERR | POLLHUP | POLLNVAL)))
+        return std::numeric_limits<std::size_t>::max();
+    // After POLLOUT a pipe takes PIPE_BUF bytes without blocking.
+    return (revents & POLLOUT) ? PIPE_BUF : 0;
 }
 
 void StdinConsole::write(std::string_view text) noexcept

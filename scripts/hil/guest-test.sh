@@ -333,11 +333,12 @@ check_button_press() {
 # `snapshot` on the DRM display: the frame read back before the page flip, written as a PNG in
 # the state folder by user mirror; copied to the results for the host to check its pixels.
 check_snapshot_drm() {
-    # The path comes with a later frame, in place of the waiting prompt ("\rsnapshot: /...png").
-    local expect='snapshot: /.*\.png'
+    # The path comes with a later frame, in place of the waiting prompt
+    # ("\rsnapshot: wrote /...png").
+    local expect='snapshot: wrote /.*\.png'
     console_round 30 snapshot || return 1
     local png
-    png=$(grep -aoE 'snapshot: /[^ ]*\.png' "$CONSOLE" | head -1 | cut -d' ' -f2)
+    png=$(grep -aoE 'snapshot: wrote /[^ ]*\.png' "$CONSOLE" | head -1 | cut -d' ' -f3)
     [ -n "$png" ] || { echo "no snapshot path: $(grep -a snapshot "$CONSOLE" | tr '\n' ' ')"; return 1; }
     [ -f "$png" ] || { echo "$png missing"; return 1; }
     [ "$(stat -c %U "$png")" = mirror ] || { echo "$png is not owned by user mirror"; return 1; }

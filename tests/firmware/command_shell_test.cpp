@@ -138,47 +138,39 @@ TEST(Reply, PrintfAndLineAppend)
     EXPECT_TRUE(reply.empty());
 }
 
-TEST(Reply, TruncatesWithAMarker)
+TEST(Reply, HoldsFarMoreThanTheOldFourKilobytes)
 {
     Reply reply;
+    const std::string chunk(100, 'x');
+    for (int i = 0; i < 1000; ++i)
+        reply.printf("%s\n", chunk.c_str());
+    EXPECT_FALSE(reply.truncated());
+    EXPECT_EQ(reply.text().size(), 101'000u);
+}
+
+TEST(Reply, BeyondItsCapacityEndsWithAMarker)
+{
+    Reply reply(1000);
     const std::string chunk(100, 'x');
     for (int i = 0; i < 100; ++i)
         reply.printf("%s\n", chunk.c_str());
     EXPECT_TRUE(reply.truncated());
-    EXPECT_LE(reply.text().size(), Reply::kCapacity);
-    EXPECT_GT(reply.text().size(), Reply::kCapacity - 120);
     const std::string text(reply.text());
+    EXPECT_LE(text.size(), 1000u + 13u);
     EXPECT_EQ(text.substr(text.size() - 13), "\n[truncated]\n");
     // Later appends are ignored; the marker stays last.
     reply.line("more");
     reply.append("more");
     reply.printf("%s", "more");
     EXPECT_EQ(std::string(reply.text()), text);
-}
 
-TEST(Reply, TruncatesOneHugeLine)
-{
-    Reply reply;
-    const std::string huge(3 * Reply::kCapacity, 'y');
-    reply.append(huge);
-    EXPECT_TRUE(reply.truncated());
-    EXPECT_EQ(reply.text().size(), Reply::kCapacity);
-    EXPECT_EQ(reply.text().substr(reply.text().size() - 13), "\n[truncated]\n");
-
-    Reply formatted;
-    formatted.printf("%s", huge.c_str());
-    EXPECT_EQ(formatted.text(), reply.text());
-}
-
-TEST(Reply, ExactlyFullIsNotTruncated)
-{
-    Reply reply;
-    // The content room is the capacity minus the room kept for the marker.
-    const std::size_t room = Reply::kCapacity - Reply::kTruncatedMarker.size() - 2;
-    reply.append(std::string(room, 'z'));
-    EXPECT_FALSE(reply.truncated());
-    reply.append("!");
-    EXPECT_TRUE(reply.truncated());
+    Reply huge(1000);
+    huge.append(std::string(3000, 'y'));
+    EXPECT_TRUE(huge.truncated());
+    EXPECT_EQ(huge.text().size(), 1000u + 13u);
+    Reply formatted(1000);
+    formatted.printf("%s", std::string(3000, 'y').c_str());
+    EXPECT_EQ(formatted.text(), huge.text());
 }
 
 TEST(Reply, StoresOnlyPrintableText)
@@ -267,7 +259,90 @@ TEST(CommandShell, HelpDescribesOneCommand)
     EXPECT_EQ(run(shell, "help help"),
               "usage: help [COMMAND]\n  list the commands, or describe one\n");
     EXPECT_EQ(run(shell, "help nope"), "error: unknown command 'nope' (try 'help')\n");
-    EXPECT_EQ(run(shell, "help echo echo"), "error: usage: help [COMMAND]\n");
+    EXPECT_EQ(run(shell, "help echo echo"),
+              "error: unexpected argument 'echo'; usage: help [COMMAND]\n");
+}
+
+TEST(Arity, FromTheUsageLine)
+{
+    auto arity = [](std::string_view usage) {
+        const firmware::Arity a = firmware::Arity::fromUsage(usage);
+        return std::to_string(a.min) + ".." + std::to_string(a.max);
+    };
+    EXPECT_EQ(arity("status"), "0..0");
+    EXPECT_EQ(arity("status [--json]"), "0..1");
+    EXPECT_EQ(arity("log [error|warn|info|debug] [N]"), "0..2");
+    EXPECT_EQ(arity("overlay [next|prev|off|list|NAME|N|mode global|per_face]"), "0..2");
+    EXPECT_EQ(arity("set KEY VALUE"), "2..2");
+    EXPECT_EQ(arity("snapshot PATH [NOTE]"), "1..2");
+    EXPECT_EQ(arity("echo [WORD...]"), "0..7");
+    EXPECT_EQ(arity("sum N..."), "1..7");
+}
+
+TEST(CommandShell, EveryArgumentCountErrorGivesTheUsage)
+{
+    CommandShell shell;
+    int runs = 0;
+    shell.add("status", "status [--json]", "state", [&](const Args&, Reply&) { ++runs; });
+    shell.add("quit", "", "stop", [&](const Args&, Reply&) { ++runs; });
+    shell.add("set", "set KEY VALUE", "change", [&](const Args&, Reply&) { ++runs; });
+    EXPECT_EQ(run(shell, "quit now"), "error: unexpected argument 'now'; usage: quit\n");
+    EXPECT_EQ(run(shell, "status --json now"),
+              "error: unexpected argument 'now'; usage: status [--json]\n");
+    EXPECT_EQ(run(shell, "set x"), "error: missing argument; usage: set KEY VALUE\n");
+    EXPECT_EQ(runs, 0);
+    EXPECT_EQ(run(shell, "status --json"), "");
+    EXPECT_EQ(runs, 1);
+}
+
+TEST(CommandShell, HandlersReportBadWordsWithTheUsage)
+{
+    CommandShell shell;
+    shell.add("log", "log [N]", "lines", [](const Args& args, Reply& reply) {
+        long n = 20;
+        if (args.size() == 2 && !args.number(1, 1, 200, n))
+            reply.usageError("N must be 1..200, got '%.*s'", Args::shown(args[1]), args[1].data());
+        else
+            reply.printf("%ld\n", n);
+    });
+    EXPECT_EQ(run(shell, "log 0"), "error: N must be 1..200, got '0'; usage: log [N]\n");
+    EXPECT_EQ(run(shell, "log -1"), "error: N must be 1..200, got '-1'; usage: log [N]\n");
+    EXPECT_EQ(run(shell, "log 2x"), "error: N must be 1..200, got '2x'; usage: log [N]\n");
+    EXPECT_EQ(run(shell, "log 200"), "200\n");
+    Args args;
+    args.parse("x on 7");
+    EXPECT_EQ(args.choice(1, {"off", "on"}), 1);
+    EXPECT_EQ(args.choice(2, {"off", "on"}), -1);
+    EXPECT_EQ(args.choice(5, {"off", "on"}), -1);
+    long v = 0;
+    EXPECT_TRUE(args.number(2, -7, 7, v));
+    EXPECT_EQ(v, 7);
+    EXPECT_FALSE(args.number(2, 8, 9, v));
+    EXPECT_FALSE(args.number(3, 0, 9, v));
+}
+
+TEST(CommandShell, HelpKeepsWithinEightyColumns)
+{
+    CommandShell shell;
+    shell.add("overlay", "overlay [next|prev|off|list|NAME|N|mode global|per_face]",
+              "what the faces wear: show, change (by name or by the number `overlay list` "
+              "prints), list the catalogue, one choice for all or one per face",
+              [](const Args&, Reply&) {});
+    shell.add("status", "status [--json]",
+              "uptime, frames, fps, per-stage p50/p99 ms, source, display; --json for tools",
+              [](const Args&, Reply&) {});
+    for (const char* command : {"help", "help overlay", "help status"})
+        for (const std::string& line : splitLines(run(shell, command)))
+            EXPECT_LE(line.size(), CommandShell::kHelpColumns) << command << ": " << line;
+    EXPECT_EQ(run(shell, "help"),
+              "commands:\n"
+              "  help [COMMAND]   list the commands, or describe one\n"
+              "  overlay [next|prev|off|list|NAME|N|mode global|per_face]\n"
+              "                   what the faces wear: show, change (by name or by the number\n"
+              "                   `overlay list` prints), list the catalogue, one choice for\n"
+              "                   all or one per face\n"
+              "  status [--json]  uptime, frames, fps, per-stage p50/p99 ms, source, display;\n"
+              "                   --json for tools\n");
 }
 
 TEST(CommandShell, ReplyWithoutNewlineIsEnded)
@@ -279,17 +354,77 @@ TEST(CommandShell, ReplyWithoutNewlineIsEnded)
     EXPECT_EQ(run(shell, "silent"), "");
 }
 
-TEST(CommandShell, LongReplyIsTruncated)
+/// A console whose output takes `room` bytes, then nothing until the test drains it (a UART's
+/// queue at 9600 baud); writing more than it said it takes is a test failure.
+class SlowConsole : public FakeConsole {
+public:
+    using FakeConsole::FakeConsole;
+    std::size_t writable() noexcept override { return room; }
+    void write(std::string_view text) noexcept override
+    {
+        EXPECT_LE(text.size(), room);
+        room -= std::min(room, text.size());
+        FakeConsole::write(text);
+    }
+    std::size_t room = 100;
+};
+
+TEST(CommandShell, ALongReplyArrivesWhole)
 {
+    // 1000 lines (about 24 KB): the old 4096-byte reply stopped after about 170 of them.
     CommandShell shell;
-    shell.add("flood", "", "too much text", [](const Args&, Reply& reply) {
+    shell.add("flood", "", "much text", [](const Args&, Reply& reply) {
         for (int i = 0; i < 1000; ++i)
             reply.printf("line %d of a long reply\n", i);
     });
-    const std::string out = run(shell, "flood");
-    EXPECT_LE(out.size(), Reply::kCapacity);
-    EXPECT_EQ(out.substr(0, 27), "line 0 of a long reply\nline");
-    EXPECT_EQ(out.substr(out.size() - 13), "\n[truncated]\n");
+    const std::vector<std::string> lines = splitLines(run(shell, "flood"));
+    ASSERT_EQ(lines.size(), 1000u);
+    EXPECT_EQ(lines.back(), "line 999 of a long reply");
+}
+
+TEST(CommandShell, ALongReplyIsStreamedAsTheConsoleDrains)
+{
+    CommandShell shell(ShellOptions{.prompt = true, .crlf = true});
+    shell.add("flood", "", "much text", [](const Args&, Reply& reply) {
+        for (int i = 0; i < 300; ++i)
+            reply.printf("line %d\n", i);
+    });
+    addEcho(shell);
+    SlowConsole console("flood\recho after\r");
+    shell.poll(console);
+    // Each poll sends what the console takes now (half of it, CR LF may double the text), and
+    // the next command waits for the reply to be out.
+    EXPECT_LE(console.output.size(), 102u);
+    EXPECT_EQ(console.output.find("echo:"), std::string::npos);
+    for (int i = 0; i < 200 && console.output.find("echo: 2 [after]") == std::string::npos; ++i) {
+        console.room = 100;  // the UART sent what was queued
+        shell.poll(console);
+    }
+    const std::string expectedEnd = "line 298\r\nline 299\r\n> echo: 2 [after]\r\n> ";
+    ASSERT_GE(console.output.size(), expectedEnd.size());
+    EXPECT_EQ(console.output.substr(console.output.size() - expectedEnd.size()), expectedEnd);
+    EXPECT_EQ(console.output.substr(0, 22), "> line 0\r\nline 1\r\nline");
+    std::size_t count = 0;
+    for (std::size_t at = 0; (at = console.output.find("\r\nline ", at)) != std::string::npos; ++at)
+        ++count;
+    EXPECT_EQ(count, 299u);
+}
+
+TEST(CommandShell, AClosedInputStillGetsItsLastReply)
+{
+    CommandShell shell;
+    addEcho(shell);
+    SlowConsole console("echo a b c d\n");
+    console.closeAtEnd = true;
+    console.room = 4;
+    CommandShell::PollResult result = shell.poll(console);
+    EXPECT_FALSE(result.closed);  // input ended, but the reply is not out yet
+    for (int i = 0; i < 100 && !result.closed; ++i) {
+        console.room = 4;
+        result = shell.poll(console);
+    }
+    EXPECT_TRUE(result.closed);
+    EXPECT_EQ(console.output, "echo: 5 [a] [b] [c] [d]\n");
 }
 
 TEST(CommandShell, ThrowingHandlerBecomesAnErrorLine)

@@ -155,4 +155,45 @@ TEST(OverlayButtons, ABrokenCatalogueIsOneErrorAndTheMirrorRunsWithoutOverlays)
         << console.output();
 }
 
+TEST(ConsoleCommands, EveryCommandTakesItsArgumentsOneWayWithTheUsageInEachError)
+{
+    firmware::Config config = testConfig("console_arguments");
+    const int devNull = ::open("/dev/null", O_WRONLY);
+    firmware::setLogFd(devNull);
+    firmware::FrameLoop loop(config, std::make_unique<PreloadedFaceSource>(5),
+                             firmware::makeDisplay(config.display));
+    FakeConsole console;
+    loop.attachConsole(&console);
+    ASSERT_NE(loop.overlaySelection(), nullptr);
+    console.type(
+        "status now\nversion extra\nquit now\nlog 0\nlog -1\nlog warn 2 x\n"
+        "overlay mode\noverlay 99\noverlay 3\nstatus --json\ndebug maybe\n");
+    ASSERT_TRUE(loop.step()) << "quit now must not stop the mirror";
+    firmware::setLogFd(2);
+    ::close(devNull);
+    const std::string out(console.output());
+    const std::string overlayUsage =
+        "usage: overlay [next|prev|off|list|NAME|N|mode global|per_face]";
+    for (const std::string& expected :
+         {std::string("error: unknown option 'now'; usage: status [--json]\n"),
+          std::string("error: unexpected argument 'extra'; usage: version\n"),
+          std::string("error: unexpected argument 'now'; usage: quit\n"),
+          std::string("error: N must be 1..200, got '0'; usage: log [error|warn|info|debug] [N]\n"),
+          std::string(
+              "error: N must be 1..200, got '-1'; usage: log [error|warn|info|debug] [N]\n"),
+          std::string("error: unexpected argument 'x'; usage: log [error|warn|info|debug] [N]\n"),
+          "error: mode needs global or per_face; " + overlayUsage + "\n",
+          "error: no overlay '99' (overlay list: names and numbers 1.." +
+              std::to_string(loop.overlaySelection()->size()) + "); " + overlayUsage + "\n",
+          "overlay: " + std::string(loop.overlaySelection()->name(2)) + "\n",
+          std::string("{\"version\":\""),
+          std::string("error: expected on or off, got 'maybe'; usage: debug [on|off]\n")})
+        EXPECT_NE(out.find(expected), std::string::npos) << expected << "\nin:\n" << out;
+    EXPECT_EQ(loop.overlaySelection()->selected(), 2) << "overlay 3: the third of `overlay list`";
+    // Every line of the reply to each bad command starts with "error: " and names the usage.
+    for (std::size_t at = 0; (at = out.find("error: ", at)) != std::string::npos; ++at)
+        EXPECT_NE(out.substr(at, out.find('\n', at) - at).find("; usage: "), std::string::npos)
+            << out.substr(at, out.find('\n', at) - at);
+}
+
 }  // namespace

@@ -11,6 +11,7 @@
 #include <stdlib.h>
 #include <unistd.h>
 
+#include <atomic>
 #include <cerrno>
 #include <cstring>
 #include <random>
@@ -92,6 +93,15 @@ TEST(SerialShell, AFloodOfRandomBytesIsReadInBoundedPiecesWithoutAllocating)
             sent += static_cast<std::size_t>(n);
         }
     });
+    // The terminal shows whatever comes back (error lines), as a UART always drains: the shell
+    // reads the next line only once its reply to the last one is out.
+    std::atomic<bool> flooding{true};
+    std::thread screen([&] {
+        char sink[4096];
+        while (flooding.load())
+            if (::read(s.terminal.master, sink, sizeof sink) <= 0)
+                ::usleep(100);
+    });
     std::size_t received = 0;
     std::size_t largest = 0;
     testing_support::AllocationCounts counts;
@@ -107,6 +117,10 @@ TEST(SerialShell, AFloodOfRandomBytesIsReadInBoundedPiecesWithoutAllocating)
         counts = scope.counts();
     }
     flood.join();
+    for (int i = 0; i < 100 && s.shell.pendingOutput(0) > 0; ++i)
+        s.frames(1);
+    flooding = false;
+    screen.join();
     EXPECT_EQ(received, kFlood);
     EXPECT_LE(largest, 256u);
     if (testing_support::allocationCountingAvailable()) {
@@ -121,4 +135,29 @@ TEST(SerialShell, AFloodOfRandomBytesIsReadInBoundedPiecesWithoutAllocating)
         seen += s.terminal.screen(50);
     }
     EXPECT_NE(seen.find("mirror 0.1.0\r\n> "), std::string::npos);
+}
+
+TEST(SerialShell, AReplyLongerThanTheOutputQueueArrivesWhole)
+{
+    // 2000 lines, about 30 KB: more than the serial console's 16 KB output queue and the old
+    // 4 KB reply. The shell hands the console only what its queue takes, frame after frame.
+    SerialShell s;
+    s.shell.add("flood", "", "many lines", [](const Args&, Reply& reply) {
+        for (int i = 0; i < 2000; ++i)
+            reply.printf("line %04d of the reply\n", i);
+    });
+    s.frames(1);
+    std::string seen = s.terminal.screen(50);
+    s.terminal.type("flood\r");
+    for (int i = 0; i < 2000 && seen.find("line 1999 of the reply\r\n> ") == std::string::npos;
+         ++i) {
+        s.frames(1);
+        seen += s.terminal.screen(0);
+    }
+    std::size_t lines = 0;
+    for (std::size_t at = 0; (at = seen.find(" of the reply\r\n", at)) != std::string::npos; ++at)
+        ++lines;
+    EXPECT_EQ(lines, 2000u);
+    EXPECT_EQ(s.console.droppedBytes(), 0u);
+    EXPECT_NE(seen.find("line 0000 of the reply\r\nline 0001"), std::string::npos);
 }

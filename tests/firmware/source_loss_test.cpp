@@ -55,18 +55,25 @@ std::string readFile(const std::string& path)
     return s.str();
 }
 
-TEST(SourceLoss, CalmScreenWhileLostOneLogLineEachWayAndBackToFrames)
+/// A small headless mirror without card and faces, its output in a fresh folder `out`.
+firmware::Config lossConfig(const std::string& name, const std::string& out, double summaryS)
 {
     firmware::Config config;
-    const std::string out = testing_support::freshOutputDir("source_loss");
     config.display.spec = "headless:" + out;
     config.display.width = 320;
     config.display.height = 240;
     config.display.snapshotEvery = 0;
     config.card.enabled = false;
     config.faces.enabled = false;
-    config.log.summaryIntervalS = 0;
-    config.state.dir = testing_support::freshOutputDir("source_loss_state");
+    config.log.summaryIntervalS = summaryS;
+    config.state.dir = testing_support::freshOutputDir(name + "_state");
+    return config;
+}
+
+TEST(SourceLoss, CalmScreenWhileLostOneLogLineEachWayAndBackToFrames)
+{
+    const std::string out = testing_support::freshOutputDir("source_loss");
+    const firmware::Config config = lossConfig("source_loss", out, 0);
     const std::string logPath = out + "/log.txt";
     const int logFd = ::open(logPath.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
     firmware::setLogFd(logFd);
@@ -102,7 +109,16 @@ TEST(SourceLoss, CalmScreenWhileLostOneLogLineEachWayAndBackToFrames)
     EXPECT_NE(log.find("source is back"), std::string::npos) << log;
     EXPECT_EQ(loop.framesShown(), 10u);
     EXPECT_NE(console.output().find("[LOST]"), std::string_view::npos) << console.output();
-    EXPECT_NE(console.output().find("FAIL camera"), std::string_view::npos) << console.output();
+    EXPECT_NE(console.output().find("FAIL camera: flaky test camera, test camera unplugged\n"),
+              std::string_view::npos)
+        << console.output();
+    // The calm screen is shown: the display is not blamed for the camera.
+    EXPECT_NE(console.output().find("PASS display: "), std::string_view::npos) << console.output();
+    // The snapshot asked for names its folder at once and its file once written.
+    EXPECT_NE(console.output().find("snapshot: writing the next frame shown to " + out +
+                                    "/snapshot-NNNNNN.png\n"),
+              std::string_view::npos)
+        << console.output();
     if (testing_support::allocationCountingAvailable()) {
         EXPECT_EQ(counts.cxxNew, 0);
         EXPECT_EQ(counts.ownMalloc, 0);
@@ -111,12 +127,46 @@ TEST(SourceLoss, CalmScreenWhileLostOneLogLineEachWayAndBackToFrames)
     // stripes of the last frame.
     const std::string shot(loop.display().lastSnapshot());
     ASSERT_FALSE(shot.empty());
+    EXPECT_NE(console.output().find("snapshot: wrote " + shot + "\n"), std::string_view::npos)
+        << console.output();
     const cv::Mat image = cv::imread(shot, cv::IMREAD_COLOR);
     ASSERT_FALSE(image.empty()) << shot;
     const cv::Vec3b corner = image.at<cv::Vec3b>(5, image.cols - 5);
     EXPECT_NEAR(corner[0], 36, 3);  // B of (0.09, 0.11, 0.14)
     EXPECT_NEAR(corner[1], 28, 3);
     EXPECT_NEAR(corner[2], 23, 3);
+}
+
+TEST(SourceLoss, TheSummaryDoesNotPushTheCauseOutOfTheLog)
+{
+    // Twenty summaries' worth of time without a camera: the ring keeps the loss, not twenty
+    // identical "frames=0" lines (one is logged; summary.log keeps every one).
+    const std::string out = testing_support::freshOutputDir("source_loss_summary");
+    const firmware::Config config = lossConfig("source_loss_summary", out, 0.05);
+    const int logFd = ::open((out + "/log.txt").c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    firmware::setLogFd(logFd);
+    auto source = std::make_unique<FlakySource>();
+    source->lost = true;
+    firmware::FrameLoop loop(config, std::move(source), firmware::makeDisplay(config.display));
+    FakeConsole console;
+    loop.attachConsole(&console);
+    for (int i = 0; i < 20; ++i)
+        ASSERT_TRUE(loop.step());  // 50 ms each
+    console.type("log 5\nlog warn 1\n");
+    ASSERT_TRUE(loop.step());
+    firmware::setLogFd(2);
+    ::close(logFd);
+
+    const std::string log = readFile(out + "/log.txt");
+    std::size_t summaries = 0;
+    for (std::size_t at = 0; (at = log.find(" I frames=0 ", at)) != std::string::npos; ++at)
+        ++summaries;
+    EXPECT_EQ(summaries, 1u) << log;
+    const std::string replies(console.output());
+    EXPECT_NE(replies.find("W source lost: test camera unplugged (retrying)\n"), std::string::npos)
+        << replies;
+    const std::size_t warn = replies.rfind("W source lost");
+    EXPECT_NE(warn, replies.find("W source lost")) << "in `log 5` and in `log warn 1`: " << replies;
 }
 
 }  // namespace

@@ -14,6 +14,7 @@
 #include "shape_alignment.hpp"
 #include "shape_modes.hpp"
 #include "shape_synthesis.hpp"
+#include "tool_cli.hpp"
 #include "training_image.hpp"
 #include "vision/aam_model.hpp"
 #include "vision/candide_reduction.hpp"
@@ -317,6 +318,7 @@ int main(int argc, char** argv)
 {
     CLI::App app{"aam-build: the offline Active Appearance Model builder"};
     app.require_subcommand(1);
+    tool_cli::addVersion(app, "aam-build");
     std::string wfm = "../shared/data/candide3/candide3.wfm";
     auto* mesh = app.add_subcommand("mesh", "read CANDIDE-3 and report the tracked cut of it");
     mesh->add_option("--wfm", wfm, "the CANDIDE-3 .wfm file")->capture_default_str();
@@ -379,7 +381,8 @@ int main(int argc, char** argv)
     auto* inspect =
         app.add_subcommand("inspect", "read a model file as the runtime will and print its sizes");
     inspect->add_option("--model", modelFile, "the model file")->required();
-    CLI11_PARSE(app, argc, argv);
+    if (const int code = tool_cli::parse(app, argc, argv); code >= 0)
+        return code;
     try {
         if (*model)
             return buildModelFile(modelRequest);

@@ -2,6 +2,7 @@
 // the card tracker (mirror-eval card). See scenarios.cpp for what each sequence does.
 
 #include "sequence_writer.hpp"
+#include "tool_cli.hpp"
 
 #include <CLI/CLI.hpp>
 #include <cstdio>
@@ -20,7 +21,12 @@ int main(int argc, char** argv)
     std::uint32_t seed = 1;
     std::string size = "720x480";
     cardgen::GenerateOptions base;
-    app.add_option("--scenario", scenario, "the sequence to render (see --list)");
+    tool_cli::addVersion(app, "cardgen");
+    std::vector<std::string> names;
+    for (const auto& s : cardgen::scenarios())
+        names.push_back(s.name);
+    app.add_option("--scenario", scenario, "the sequence to render (see --list)")
+        ->check(CLI::IsMember(names));
     app.add_flag("--all", all, "render every scenario into OUT/<name>/");
     app.add_flag("--list", list, "list the scenarios and exit");
     app.add_option("--out", out, "output folder (frame_00000.png..., truth.csv, scenario.txt)");
@@ -31,7 +37,8 @@ int main(int argc, char** argv)
     app.add_option("--data", base.dataDir, "the shared real data folder (backgrounds)")
         ->capture_default_str();
     app.add_option("--background", base.background, "use this photograph as background instead");
-    CLI11_PARSE(app, argc, argv);
+    if (const int code = tool_cli::parse(app, argc, argv); code >= 0)
+        return code;
 
     if (list) {
         for (const auto& s : cardgen::scenarios())
@@ -56,12 +63,8 @@ int main(int argc, char** argv)
     base.seed = seed;
     base.size = cv::Size(w, h);
     try {
-        std::vector<std::string> names;
-        if (all)
-            for (const auto& s : cardgen::scenarios())
-                names.push_back(s.name);
-        else
-            names.push_back(scenario);
+        if (!all)
+            names = {scenario};
         for (const std::string& name : names) {
             cardgen::GenerateOptions o = base;
             o.scenario = name;

@@ -8,6 +8,7 @@
 
 #include "experiment.hpp"
 #include "ramp_generator.hpp"
+#include "tool_cli.hpp"
 
 #include <CLI/CLI.hpp>
 #include <cstdio>
@@ -55,12 +56,9 @@ int main(int argc, char** argv)
         ->check(CLI::Range(2, 100000));
     generate->add_option("--seed", ramp.seed, "noise seed");
 
-    try {
-        app.parse(argc, argv);
-    } catch (const CLI::ParseError& e) {
-        const int code = app.exit(e);
-        return code == 0 ? kExitOk : kExitUsage;
-    }
+    tool_cli::addVersion(app, "colorlab");
+    if (const int code = tool_cli::parse(app, argc, argv); code >= 0)
+        return code;
 
     try {
         if (generate->parsed()) {

@@ -5,6 +5,7 @@
 #include "compositor.hpp"
 #include "face_photo.hpp"
 #include "sequence_writer.hpp"
+#include "tool_cli.hpp"
 
 #include <CLI/CLI.hpp>
 #include <cstdio>
@@ -65,7 +66,12 @@ int main(int argc, char** argv)
     std::string size = "640x480";
     facegen::GenerateOptions base;
     base.cascadePath = facegen::kDefaultCascade;
-    app.add_option("--scenario", scenario, "the sequence to render, or 'all' (see --list)");
+    tool_cli::addVersion(app, "facegen");
+    std::vector<std::string> known{"all"};
+    for (const auto& s : facegen::scenarios())
+        known.push_back(s.name);
+    app.add_option("--scenario", scenario, "the sequence to render, or 'all' (see --list)")
+        ->check(CLI::IsMember(known));
     app.add_flag("--list", list, "list the scenarios and exit");
     app.add_option("--out", out,
                    "output folder (frames/, truth/, README.txt); with --scenario all, OUT/<name>/");
@@ -86,7 +92,8 @@ int main(int argc, char** argv)
         ->check(CLI::Range(1, 1000));
     app.add_flag("--measure-size", measure,
                  "measure the detector's box against the IMM landmark width and exit");
-    CLI11_PARSE(app, argc, argv);
+    if (const int code = tool_cli::parse(app, argc, argv); code >= 0)
+        return code;
 
     cv::setNumThreads(1);  // --measure-size and --check repeatable too
     try {

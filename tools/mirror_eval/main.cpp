@@ -8,6 +8,7 @@
 #include "detect_eval.hpp"
 #include "liveness_eval.hpp"
 #include "roll_eval.hpp"
+#include "tool_cli.hpp"
 #include "track_eval.hpp"
 
 #include <CLI/CLI.hpp>
@@ -17,6 +18,7 @@ int main(int argc, char** argv)
 {
     CLI::App app{"mirror-eval: scores the vision core against ground truth"};
     app.require_subcommand(1);
+    tool_cli::addVersion(app, "mirror-eval");
 
     mirror_eval::CardEvalOptions card;
     CLI::App* cardCmd =
@@ -196,15 +198,8 @@ int main(int argc, char** argv)
     aamCmd->add_option("--max-frames", aam.maxFrames, "only the first N frames (0: all)");
     aamCmd->add_flag("--per-frame", aam.perFrame, "one line per frame");
 
-    try {
-        app.parse(argc, argv);
-    } catch (const CLI::Success& e) {
-        return app.exit(e);
-    } catch (const CLI::ParseError& e) {
-        // A bad argument (an unknown option, a missing value): one line, exit code 2.
-        std::fprintf(stderr, "mirror-eval: %s\n", e.what());
-        return 2;
-    }
+    if (const int code = tool_cli::parse(app, argc, argv); code >= 0)
+        return code;
     if (aamCmd->parsed())
         return mirror_eval::runAamEval(aam, stdout, stderr);
     if (cardCmd->parsed())

@@ -4,6 +4,7 @@
 #include "asset_files.hpp"
 #include "models.hpp"
 #include "preview.hpp"
+#include "tool_cli.hpp"
 
 #include <CLI/CLI.hpp>
 #include <cstdio>
@@ -50,6 +51,7 @@ int main(int argc, char** argv)
         "overlaygen: the mirror's own hat and glasses models. Writes Wavefront OBJ (+ MTL) "
         "files and the generated block of catalogue.toml into the overlay directory."};
     app.require_subcommand(1);
+    tool_cli::addVersion(app, "overlaygen");
     std::string dir = "assets/overlays";
     std::string out = "overlay-previews";
     int size = 480;
@@ -64,7 +66,8 @@ int main(int argc, char** argv)
         ->capture_default_str();
     view->add_option("--out", out, "Directory for the PNG files")->capture_default_str();
     view->add_option("--size", size, "Pixels per view (square)")->capture_default_str();
-    CLI11_PARSE(app, argc, argv);
+    if (const int code = tool_cli::parse(app, argc, argv); code >= 0)
+        return code;
 
     try {
         if (write->parsed()) {

@@ -28,9 +28,11 @@
 #include <cstdint>
 #include <memory>
 #include <string>
+#include <vector>
 
 namespace firmware {
 
+class BugReportWorker;
 class CardControl;
 class FaceControl;
 class OverlayControl;
@@ -53,8 +55,13 @@ public:
     FrameLoop(const FrameLoop&) = delete;
     FrameLoop& operator=(const FrameLoop&) = delete;
 
-    /// The console the shell reads commands from and answers on (not owned; may be null).
-    void attachConsole(platform::Console* console) noexcept { consoles_[0] = console; }
+    /// The console the shell reads commands from and answers on (not owned; may be null); a
+    /// terminal gets a prompt.
+    void attachConsole(platform::Console* console, bool terminal = false) noexcept
+    {
+        consoles_[0] = console;
+        shell_.setChannelStyle(0, terminal, /*crlf=*/false);
+    }
     /// A second console (the serial port), served by the same shell with its own line assembly.
     void attachSerialConsole(platform::Console* console) noexcept
     {
@@ -92,6 +99,14 @@ public:
     /// Whether the debug HUD (face boxes, corners, roll axes) is shown.
     bool debugHud() const noexcept;
 
+    /// The mirror executable (for the bug report's camera list, run as a new process).
+    void setProgramPath(std::string path);
+    /// `mirror --bug-report FILE`: after `afterS` seconds of running, write a bug report to
+    /// `path` (as the console's `bug-report` does), then stop.
+    void scheduleBugReport(std::string path, double afterS);
+    /// True when a scheduled bug report could not be written.
+    bool bugReportFailed() const noexcept { return bugReportFailed_; }
+
 private:
     // The steps of one frame, in order (frame_loop.cpp).
     std::int64_t startIteration() noexcept;
@@ -109,6 +124,10 @@ private:
     void showSourceLost(std::int64_t nowNs) noexcept;
     void updateRate(std::int64_t nowNs) noexcept;
     void writeSummary() noexcept;
+    bool summaryWorthLogging(std::int64_t nowNs) noexcept;
+    /// After a frame was shown: the consoles that asked for a snapshot are told its path, and a
+    /// bug report waiting for it goes on.
+    void afterPresent() noexcept;
     void formatHud() noexcept;
     void record(std::size_t step, std::int64_t ns) noexcept
     {
@@ -128,6 +147,14 @@ private:
     // The console (console_commands.cpp, self_test.cpp).
     void registerCommands();
     void formatStatus(Reply& reply) const noexcept;
+    /// `status --json`: the same facts as one JSON object, for field tools.
+    void formatStatusJson(Reply& reply) const noexcept;
+    void snapshotCommand(Reply& reply) noexcept;
+    // The bug report (loop_bug_report.cpp).
+    void bugReportCommand(const Args& args, Reply& reply) noexcept;
+    void gatherBugReport() noexcept;
+    void startBugReport(const char* snapshot) noexcept;
+    void serviceBugReport(std::int64_t nowNs) noexcept;
     void buttonsCommand(Reply& reply) noexcept;
     /// Writes the self-test report (as `selftest` prints it): one PASS/FAIL/SKIP line per check.
     /// Returns the number of FAILs.
@@ -193,6 +220,19 @@ private:
     std::uint64_t intervalFrames_ = 0;
     double fps_ = 0.0;
     int summaryFd_ = -1;
+    // The bug report: the loop's texts (status, status JSON, selftest, config, log), sized at
+    // start-up, and the thread that writes the tarball.
+    std::vector<Reply> bugTexts_;
+    std::unique_ptr<BugReportWorker> bugReports_;
+    char bugReportPath_[1024] = "";
+    bool bugSnapshotWanted_ = false;
+    std::int64_t bugRequestedNs_ = 0;
+    std::string scheduledBugReport_;
+    std::int64_t bugReportDueNs_ = 0;
+    bool stopAfterBugReport_ = false;
+    bool bugReportFailed_ = false;
+    std::int64_t loggedSummaryNs_ = 0;  // when a summary last went to the log at Info
+    double loggedFps_ = 0.0;            // its frame rate
     char hud_[256] = "";
 };
 

@@ -2,6 +2,7 @@
 // Console: a byte stream to a technician (stdin/stdout now; later a serial port).
 
 #include <cstddef>
+#include <limits>
 #include <string_view>
 
 namespace platform {
@@ -18,6 +19,9 @@ public:
     virtual long read(char* buffer, std::size_t capacity) noexcept = 0;
     /// Best-effort write of the whole text; drops output rather than block the frame loop.
     virtual void write(std::string_view text) noexcept = 0;
+    /// Bytes write() takes now without dropping any; a long reply is sent in pieces this size
+    /// as the console drains. Consoles that never drop say so with the largest size.
+    virtual std::size_t writable() noexcept { return std::numeric_limits<std::size_t>::max(); }
 };
 
 }  // namespace platform

@@ -15,8 +15,8 @@ namespace platform {
 
 /// The rates a serial console can be set to: the standard ones termios names (B9600 ... B4000000).
 inline constexpr std::array<int, 18> kSerialBaudRates = {
-    9600,    19200,   38400,   57600,   115200,  230400,  460800,  500000,  576000,
-    921600,  1000000, 1152000, 1500000, 2000000, 2500000, 3000000, 3500000, 4000000};
+    9600,   19200,   38400,   57600,   115200,  230400,  460800,  500000,  576000,
+    921600, 1000000, 1152000, 1500000, 2000000, 2500000, 3000000, 3500000, 4000000};
 
 struct SerialConsoleOptions {
     int baud = 115200;                 ///< one of kSerialBaudRates
@@ -54,6 +54,8 @@ public:
     const char* description() const noexcept override { return description_; }
     long read(char* buffer, std::size_t capacity) noexcept override;
     void write(std::string_view text) noexcept override;
+    /// Room left in the output queue after flushing what the port takes now.
+    std::size_t writable() noexcept override;
 
     /// Writes as much queued output as the port takes now.
     void flush() noexcept;

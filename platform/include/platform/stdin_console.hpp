@@ -30,6 +30,8 @@ public:
     const char* description() const noexcept override { return "stdin"; }
     long read(char* buffer, std::size_t capacity) noexcept override;
     void write(std::string_view text) noexcept override;
+    /// PIPE_BUF when the output is ready now, 0 when it is full; everything when it is broken.
+    std::size_t writable() noexcept override;
 
     /// True once the input reached end of file or failed; read() returns -1 from then on.
     bool closed() const noexcept { return closed_; }
