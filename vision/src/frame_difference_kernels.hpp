@@ -28,15 +28,19 @@ struct Row {
 template <int Step>
 int testRowScalar(const Row& row, int x0, int w, int limit, const ColorBands& bands) noexcept
 {
+    // Local restrict copies: a store through the mask (a byte pointer) could otherwise alias `row`.
     const std::uint8_t* __restrict p = row.p;
     const std::uint8_t* __restrict q = row.q;
+    const std::uint8_t* __restrict pr = row.r;
+    const std::uint8_t* __restrict pg = row.g;
+    const std::uint8_t* __restrict pb = row.b;
     std::uint8_t* __restrict pm = row.mask;
     int changed = 0;
     for (int x = x0; x < w; ++x) {
         const int d = std::abs(p[Step * x] - q[Step * x]) +
                       std::abs(p[Step * x + 1] - q[Step * x + 1]) +
                       std::abs(p[Step * x + 2] - q[Step * x + 2]);
-        const std::uint8_t match = matchMask(bands, row.r[x], row.g[x], row.b[x]);
+        const std::uint8_t match = matchMask(bands, pr[x], pg[x], pb[x]);
         const std::uint8_t change = static_cast<std::uint8_t>(-(d > limit));
         pm[x] = static_cast<std::uint8_t>((match & change) | (pm[x] & ~change));
         changed += change & 1;
