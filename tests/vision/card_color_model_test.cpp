@@ -2,7 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <random>
 
 using namespace vision;
 
@@ -105,6 +107,52 @@ TEST(CardColorModel, UpdateFormula)
     for (int i = 0; i < 200; ++i)
         m = blendColorModel(trained, m, cur, a, b);
     EXPECT_NEAR(m.mean[0], 100.f + (1 - a) * (1 - b) * 30.f / (1 - (1 - a) * b), 1e-3f);
+}
+
+// colorTest's vectorised loop against matchesColor, pixel by pixel: random planes and bands (empty,
+// full and ordinary ones), regions whose start and width leave every tail of a 16-pixel step, and
+// the mask outside the region untouched.
+TEST(CardColorModel, ColorTestIsMatchesColorEverywhere)
+{
+    std::mt19937 rng(3);
+    std::uniform_int_distribution<int> byte(0, 255);
+    constexpr int kW = 53, kH = 3;
+    ImageBuffer r(kW, kH, PixelFormat::Gray8), g(kW, kH, PixelFormat::Gray8),
+        b(kW, kH, PixelFormat::Gray8), mask(kW, kH, PixelFormat::Gray8);
+    const ChromaticityPlanes planes{r.view(), g.view(), b.view()};
+    for (int trial = 0; trial < 60; ++trial) {
+        for (const ImageView v : {r.view(), g.view(), b.view(), mask.view()})
+            for (int y = 0; y < kH; ++y)
+                for (int x = 0; x < kW; ++x)
+                    v.row(y)[x] = static_cast<std::uint8_t>(byte(rng));
+        ColorBounds bounds;
+        for (int c = 0; c < 3; ++c) {
+            const int lo = byte(rng) / 2, hi = lo + byte(rng) / 2;
+            bounds.lo[c] = static_cast<std::uint8_t>(lo);
+            bounds.hi[c] = static_cast<std::uint8_t>(hi);
+        }
+        if (trial % 4 == 1)
+            std::swap(bounds.lo[trial % 3], bounds.hi[trial % 3]);  // empty unless lo == hi
+        if (trial % 4 == 2)
+            bounds = ColorBounds{{0, 0, 0}, {255, 255, 255}};
+        const Rect region{trial % 17, trial % 2, kW - trial % 17 - trial % 5, kH - trial % 2};
+        ImageBuffer before(kW, kH, PixelFormat::Gray8);
+        std::copy_n(mask.view().data, mask.bytes(), before.view().data);
+        colorTest(planes, bounds, region, mask.view());
+        for (int y = 0; y < kH; ++y)
+            for (int x = 0; x < kW; ++x) {
+                const bool inside = x >= region.x && x < region.x + region.width && y >= region.y &&
+                                    y < region.y + region.height;
+                const std::uint8_t want =
+                    inside ? (matchesColor(bounds, r.view().row(y)[x], g.view().row(y)[x],
+                                           b.view().row(y)[x])
+                                  ? 255
+                                  : 0)
+                           : before.view().row(y)[x];
+                ASSERT_EQ(mask.view().row(y)[x], want)
+                    << "trial " << trial << " at " << x << "," << y;
+            }
+    }
 }
 
 TEST(CardColorModel, ColorTestAndMeasureOverAMask)
