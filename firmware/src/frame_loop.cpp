@@ -29,6 +29,7 @@ render::RendererOptions rendererOptions(const DisplayConfig& d)
     o.mirror = d.mirror;
     o.fit = d.fit == DisplayConfig::Fit::Cover ? render::Fit::Cover : render::Fit::Contain;
     o.hud = d.hud;
+    o.rotation = d.rotation;
     return o;
 }
 
@@ -308,6 +309,11 @@ std::int64_t FrameLoop::present() noexcept
 bool FrameLoop::finishIteration(std::int64_t now) noexcept
 {
     updateRate(now);
+    if (deviceWait_ && !restart_ && deviceWait_->poll(now)) {
+        MIRROR_LOG_INFO("%s connected: rebuilding the pipeline on it", deviceWait_->found());
+        restart_ = true;
+        requestStop();
+    }
     return true;
 }
 
@@ -321,8 +327,9 @@ void FrameLoop::showSourceLost(std::int64_t now) noexcept
     if (!display_->beginFrame())
         return;
     if (renderer_->drawMessage("camera unavailable\nreconnecting ...", display_->width(),
-                               display_->height()))
-        display_->present();
+                               display_->height()) &&
+        display_->present())
+        notifier_.ready("camera unavailable, retrying");  // the mirror runs and says so: ready
 }
 
 void FrameLoop::tellConsoles(const char* text) noexcept
@@ -381,9 +388,15 @@ void FrameLoop::writeSummary() noexcept
         std::snprintf(line + n, sizeof line - static_cast<std::size_t>(n), " (p50/p99 ms)");
     MIRROR_LOG_INFO("%s", line);
     if (summaryFd_ >= 0) {
+        // Bounded: a mirror left running headless must not fill its storage with summaries.
+        constexpr std::int64_t kMaxSummaryBytes = 1 << 20;
+        if (summaryBytes_ > kMaxSummaryBytes && ::ftruncate(summaryFd_, 0) == 0 &&
+            ::lseek(summaryFd_, 0, SEEK_SET) == 0)
+            summaryBytes_ = 0;
         const std::size_t len = std::strlen(line);
         line[len] = '\n';
-        [[maybe_unused]] const ssize_t w = ::write(summaryFd_, line, len + 1);
+        const ssize_t w = ::write(summaryFd_, line, len + 1);
+        summaryBytes_ += w > 0 ? w : 0;
     }
 }
 

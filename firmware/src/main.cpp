@@ -104,7 +104,9 @@ extern "C" void onStopSignal(int signal)
 
 const char* const kFooter = R"(
 Sources (--source, [source] spec):
-  auto          a libcamera camera, else a V4L2 capture device, else the demo scene
+  auto          a libcamera camera, else a V4L2 capture device; with neither, the appliance
+                (under systemd) shows "camera unavailable" and switches to a camera when one
+                is plugged in (udev), a developer's run plays the demo scene
   demo          Debian's opencv-doc sample video Megamind.avi with a synthetic coloured card moving
                 over it; the fully synthetic scene when the video is not installed
   synthetic     a procedural scene (no files needed)
@@ -119,6 +121,7 @@ Sources (--source, [source] spec):
 Displays (--display, [display] spec):
   auto          the panel (DRM/KMS) when a connected one exists, else a desktop window when a
                 display server is there, else headless in $STATE_DIRECTORY or /var/lib/mirror
+                (/display: snapshots on request only) until a panel is connected (udev)
   drm[:CARD]    the panel through DRM/KMS (GBM + EGL, page flips on vsync); [display] mode
                 "preferred", "WxH" or "WxH@Hz"; `snapshot` PNGs in [display] snapshot_dir
   window        an X11 window for development; keys: n/p next/previous overlay, o off, t train
@@ -130,7 +133,7 @@ Displays (--display, [display] spec):
 Diagnostics console (on standard input when [console] stdin = true, and on the serial port
 [console] serial, e.g. /dev/ttyS0 at 115200 8N1):
   help, status, selftest, log [N], version, snapshot, config, faces, debug [on|off],
-  overlay [next|prev|off|list|NAME|mode global|per_face], buttons, card [train|reset],
+  overlay [next|prev|off|list|NAME|mode global|per_face], buttons, card [train|reset|forget],
   reboot-mirror (rebuilds the pipeline, not the machine), quit
 
 Overlays ([overlay]): hats and glasses from the catalogue (default: the installed
@@ -214,9 +217,10 @@ int main(int argc, char** argv)
     firmware::setLogLevel(config.log.level);
     // Under systemd the working directory is /: a relative folder is rarely what was meant.
     if (!config.state.dir.empty() && config.state.dir.front() != '/')
-        MIRROR_LOG_WARN("state: state.dir \"%s\" is relative, so it is under the working "
-                        "directory; an installed mirror wants an absolute path",
-                        config.state.dir.c_str());
+        MIRROR_LOG_WARN(
+            "state: state.dir \"%s\" is relative, so it is under the working "
+            "directory; an installed mirror wants an absolute path",
+            config.state.dir.c_str());
     std::signal(SIGPIPE, SIG_IGN);
     try {
         std::unique_ptr<platform::StdinConsole> console;
@@ -242,7 +246,9 @@ int main(int argc, char** argv)
         for (;;) {
             auto frameSource = firmware::makeSource(config.source);
             auto frameDisplay = firmware::makeDisplay(config.display, config.state.dir);
+            auto deviceWait = firmware::makeDeviceWait(config, *frameSource, *frameDisplay);
             firmware::FrameLoop loop(config, std::move(frameSource), std::move(frameDisplay));
+            loop.attachDeviceWait(std::move(deviceWait));
             if (console)
                 loop.attachConsole(console.get());
             if (serial)
@@ -257,7 +263,7 @@ int main(int argc, char** argv)
                 std::_Exit(code);
             if (!loop.restartRequested())
                 return code;
-            MIRROR_LOG_INFO("reboot-mirror: rebuilding the pipeline");
+            MIRROR_LOG_INFO("rebuilding the pipeline");
         }
     } catch (const firmware::StartupError& e) {
         std::cerr << "mirror: " << e.what() << '\n';

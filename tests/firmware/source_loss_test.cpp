@@ -3,6 +3,7 @@
 // resumes tracking when frames come back, without allocating while it waits.
 #include "alloc_counter.hpp"
 #include "fake_console.hpp"
+#include "fake_systemd.hpp"
 #include "firmware/device_factory.hpp"
 #include "firmware/frame_loop.hpp"
 #include "firmware/log.hpp"
@@ -117,6 +118,34 @@ TEST(SourceLoss, CalmScreenWhileLostOneLogLineEachWayAndBackToFrames)
     EXPECT_NEAR(corner[0], 36, 3);  // B of (0.09, 0.11, 0.14)
     EXPECT_NEAR(corner[1], 28, 3);
     EXPECT_NEAR(corner[2], 23, 3);
+}
+
+/// Under systemd (Type=notify) a camera missing at boot must not keep the unit "activating" until
+/// its start timeout kills it: the calm screen shown is the mirror running, so it is READY.
+TEST(SourceLoss, CameraMissingAtBootIsStillReadyOnceTheCalmScreenIsShown)
+{
+    firmware::Config config;
+    const std::string out = testing_support::freshOutputDir("source_missing_ready");
+    config.display.spec = "headless:" + out;
+    config.display.width = 160;
+    config.display.height = 120;
+    config.display.snapshotEvery = 0;
+    config.card.enabled = false;
+    config.faces.enabled = false;
+    config.log.summaryIntervalS = 0;
+    config.state.dir = testing_support::freshOutputDir("source_missing_ready_state");
+    testing_support::FakeSystemd systemd(nullptr);
+
+    auto source = std::make_unique<FlakySource>();
+    source->lost = true;
+    firmware::FrameLoop loop(config, std::move(source), firmware::makeDisplay(config.display));
+    for (int i = 0; i < 3; ++i)
+        ASSERT_TRUE(loop.step());
+    EXPECT_EQ(loop.framesShown(), 0u);
+    std::string all;
+    for (const std::string& m : systemd.messages())
+        all += m + "|";
+    EXPECT_NE(all.find("READY=1\nSTATUS=camera unavailable"), std::string::npos) << all;
 }
 
 }  // namespace
