@@ -22,7 +22,7 @@ build=$(cd "$1" && pwd)
 timeout_s=${HIL_TIMEOUT:-400}
 calibration_ref_ms=${HIL_CALIBRATION_REF_MS:-15000}
 scale_max_pct=${HIL_SCALE_MAX_PCT:-400}
-boot_limit_s=300
+boot_limit_s=${HIL_BOOT_LIMIT_S:-300}
 timeout_max_s=$((timeout_s * scale_max_pct / 100 + boot_limit_s))
 
 # The checks the guest runs, in order; each must print "HIL PASS name" (HIL_CHECKS="a b": only

@@ -9,8 +9,6 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
-#include <fstream>
-#include <sstream>
 #include <string>
 
 namespace {
@@ -42,14 +40,6 @@ private:
     std::uint64_t sequence_ = 0;
 };
 
-std::string readFile(const std::string& path)
-{
-    std::ifstream in(path);
-    std::stringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
-
 }  // namespace
 
 TEST(CardTraining, NoCardInViewIsRefusedTheOldColourStaysAndForgetUntrains)
@@ -80,7 +70,7 @@ TEST(CardTraining, NoCardInViewIsRefusedTheOldColourStaysAndForgetUntrains)
 
     std::string reply = run("card train\n");
     ASSERT_NE(reply.find("card: trained"), std::string::npos) << reply;
-    const std::string saved = readFile(modelPath);
+    const std::string saved = testing_support::readFile(modelPath);
     ASSERT_FALSE(saved.empty());
 
     camera->colour[0] = 190;  // the card taken away: a pale wall
@@ -91,7 +81,7 @@ TEST(CardTraining, NoCardInViewIsRefusedTheOldColourStaysAndForgetUntrains)
     EXPECT_NE(reply.find("saturation"), std::string::npos) << "in numbers: " << reply;
     EXPECT_NE(reply.find("the previous colour stays"), std::string::npos) << reply;
     EXPECT_EQ(reply.find("card: trained"), std::string::npos) << reply;
-    EXPECT_EQ(readFile(modelPath), saved) << "the saved colour is kept";
+    EXPECT_EQ(testing_support::readFile(modelPath), saved) << "the saved colour is kept";
     reply = run("card\n");
     EXPECT_NE(reply.find("colour: r "), std::string::npos) << reply;
 

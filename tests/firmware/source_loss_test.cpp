@@ -13,9 +13,7 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
-#include <fstream>
 #include <opencv2/imgcodecs.hpp>
-#include <sstream>
 #include <string>
 
 namespace {
@@ -47,14 +45,6 @@ private:
     vision::ImageBuffer image_;
     std::uint64_t sequence_ = 0;
 };
-
-std::string readFile(const std::string& path)
-{
-    std::ifstream in(path);
-    std::stringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
 
 TEST(SourceLoss, CalmScreenWhileLostOneLogLineEachWayAndBackToFrames)
 {
@@ -97,7 +87,7 @@ TEST(SourceLoss, CalmScreenWhileLostOneLogLineEachWayAndBackToFrames)
     firmware::setLogFd(2);
     ::close(logFd);
 
-    const std::string log = readFile(logPath);
+    const std::string log = testing_support::readFile(logPath);
     EXPECT_NE(log.find("source lost: test camera unplugged (retrying)"), std::string::npos) << log;
     EXPECT_EQ(log.find("source lost"), log.rfind("source lost")) << "logged once: " << log;
     EXPECT_NE(log.find("source is back"), std::string::npos) << log;
