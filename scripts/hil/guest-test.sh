@@ -590,6 +590,7 @@ check_devices_plugged_in() {
     done
     log "on the camera and the panel $((SECONDS - t0)) s after the modules"
     [ "$(unit_show NRestarts)" = 0 ] || { echo "the process restarted ($(unit_show NRestarts))"; return 1; }
+    journalctl --no-pager -u mirror.service >"$R/service-journal.txt" 2>&1
 }
 
 # rss_kb PID: resident memory of a process.
