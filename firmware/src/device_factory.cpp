@@ -204,6 +204,16 @@ std::unique_ptr<platform::Display> makeHeadless(const std::string& dir, const Di
     }
 }
 
+/// Whether some /dev/mediaN exists (a media controller: where libcamera finds its cameras).
+bool mediaDevicePresent()
+{
+    std::error_code ec;
+    for (const auto& entry : std::filesystem::directory_iterator("/dev", ec))
+        if (entry.path().filename().string().starts_with("media"))
+            return true;
+    return false;
+}
+
 }  // namespace
 
 std::unique_ptr<platform::FrameSource> makeSource(const SourceConfig& config)
@@ -289,8 +299,11 @@ std::unique_ptr<DeviceWait> makeDeviceWait(const Config& config,
     if (!watch->listening())
         MIRROR_LOG_WARN("%s; looking for devices every 10 s instead", watch->lastError());
     DeviceProbes probes;
+    // libcamera's check starts a CameraManager: only when a media controller is there at all
+    // (every libcamera camera has one), not every 10 s of a machine without any.
     probes.camera = [] {
-        return platform::libcameraCameraAvailable() || platform::v4l2CaptureDeviceAvailable();
+        return platform::v4l2CaptureDeviceAvailable() ||
+               (mediaDevicePresent() && platform::libcameraCameraAvailable());
     };
     probes.panel = [] { return platform::drmDisplayAvailable(); };
     return std::make_unique<DeviceWait>(camera, panel, std::move(probes), std::move(watch));
