@@ -4,6 +4,7 @@
 #   /usr/share/mirror/                     assets
 #   /lib/systemd/system/mirror.service     the unit (+ mirror-console.service: no blanking)
 #   /lib/udev/rules.d/60-mirror-gpio.rules GPIO chips for the gpio group
+#   /usr/lib/modules-load.d/mirror.conf    V4L2, media and DRM cores at boot (hot-plug under DevicePolicy)
 #   /usr/share/doc/mirror/INSTALL.md
 # The postinst creates the system user `mirror` and the device groups and enables the unit.
 # Included from the top-level CMakeLists.txt after the firmware (needs the `mirror` target).
@@ -14,6 +15,8 @@ install(DIRECTORY ${PROJECT_SOURCE_DIR}/assets/ DESTINATION share/mirror COMPONE
 install(FILES ${PROJECT_SOURCE_DIR}/systemd/mirror.service
               ${PROJECT_SOURCE_DIR}/systemd/mirror-console.service
         DESTINATION /lib/systemd/system COMPONENT appliance)
+install(FILES ${PROJECT_SOURCE_DIR}/systemd/mirror-modules.conf
+        DESTINATION /usr/lib/modules-load.d RENAME mirror.conf COMPONENT appliance)
 install(FILES ${PROJECT_SOURCE_DIR}/systemd/60-mirror-gpio.rules
         DESTINATION /lib/udev/rules.d COMPONENT appliance)
 install(FILES ${PROJECT_SOURCE_DIR}/docs/INSTALL.md DESTINATION share/doc/mirror

@@ -79,14 +79,28 @@ void CardControl::reportTraining() noexcept
     const double f = trainFraction_;
     char* line = report_;
     const vision::CardTracker& tracker = stage_.tracker();
-    bool lost = false;  // trained but not kept: gone at the next start
-    if (!stage_.lastTrainingSucceeded()) {
+    bool warn = false;  // refused, or trained but not kept (gone at the next start)
+    const vision::CardTrainingCheck& check = stage_.lastTrainingCheck();
+    if (!stage_.lastTrainingSucceeded() && check.sigma > 0.f && !check.ok()) {
+        // The centre was not the card: say by how much, and keep what was trained before.
+        const vision::CardTrainingLimits limits;
+        std::snprintf(
+            line, sizeof report_,
+            "card: training refused: the central %.0f%% is not one uniform, saturated "
+            "colour (spread %.1f, at most %.0f; saturation %.1f, at least %.0f; "
+            "brightness %.0f, at least %.0f); %s\n",
+            f * 100, static_cast<double>(check.sigma), static_cast<double>(limits.maxSigma),
+            static_cast<double>(check.saturation), static_cast<double>(limits.minSaturation),
+            static_cast<double>(check.brightness), static_cast<double>(limits.minBrightness),
+            tracker.trainedModel().valid ? "the previous colour stays" : "still not trained");
+        warn = true;
+    } else if (!stage_.lastTrainingSucceeded()) {
         std::snprintf(line, sizeof report_,
                       "card: training failed (no usable pixels in the centre)\n");
     } else {
         const vision::CardColorModel& m = tracker.trainedModel();
         const bool saved = store_ && store_->save(m);
-        lost = !saved;
+        warn = !saved;
         std::snprintf(
             line, sizeof report_,
             "card: trained on the central %.0f%% (r %.1f g %.1f b %.1f, sigma %.1f %.1f "
@@ -97,8 +111,9 @@ void CardControl::reportTraining() noexcept
             saved ? "saved to" : "NOT saved:",
             saved ? store_->path().c_str() : (store_ ? store_->lastError() : "no state folder"));
     }
-    // A colour trained but not kept is lost at the next start: the technician must see it.
-    if (lost)
+    // A refusal, or a colour trained but not kept (lost at the next start): the technician must
+    // see it.
+    if (warn)
         MIRROR_LOG_WARN("%.*s", static_cast<int>(std::strlen(line)) - 1, line);
     else
         MIRROR_LOG_INFO("%.*s", static_cast<int>(std::strlen(line)) - 1, line);
@@ -116,8 +131,24 @@ void CardControl::command(const Args& args, Reply& reply) noexcept
     } else if (args[1] == "reset" && args.size() == 2) {
         stage_.tracker().reset();
         reply.printf("card: track reset, searching\n");
+    } else if (args[1] == "forget" && args.size() == 2) {
+        forget(reply);
     } else {
-        reply.printf("error: usage: card [train|reset]\n");
+        reply.printf("error: usage: card [train|reset|forget]\n");
+    }
+}
+
+void CardControl::forget(Reply& reply) noexcept
+{
+    stage_.tracker().forgetModel();
+    if (!store_) {
+        reply.printf("card: colour forgotten, not trained\n");
+    } else if (store_->remove()) {
+        MIRROR_LOG_INFO("card: colour forgotten, %s removed", store_->path().c_str());
+        reply.printf("card: colour forgotten, %s removed; not trained\n", store_->path().c_str());
+    } else {
+        MIRROR_LOG_WARN("card: colour forgotten, but %s", store_->lastError());
+        reply.printf("card: colour forgotten until the next start: %s\n", store_->lastError());
     }
 }
 

@@ -30,11 +30,13 @@ public:
     const char* update(const vision::FrameState& state) noexcept;
     vision::CardState state() const noexcept { return state_; }
     float confidence() const noexcept { return stage_.tracker().observation().confidence; }
-    /// `card [train|reset]`.
+    /// `card [train|reset|forget]`.
     void command(const Args& args, Reply& reply) noexcept;
 
 private:
     void reportTraining() noexcept;
+    /// Back to untrained: the model in the stage and the saved file both go.
+    void forget(Reply& reply) noexcept;
     void format(Reply& reply) const noexcept;
 
     double trainFraction_;

@@ -4,9 +4,12 @@
 #include "state_file.hpp"
 
 #include <toml++/toml.h>
+#include <unistd.h>
 
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 
 namespace firmware {
 
@@ -69,6 +72,15 @@ bool CardModelStore::save(const vision::CardColorModel& model) noexcept
                       static_cast<double>(model.sigma[1]), static_cast<double>(model.sigma[2]));
     return writeFileAtomically(dir_.c_str(), path_.c_str(), tempPath_.c_str(), text,
                                static_cast<std::size_t>(n), error_, sizeof error_);
+}
+
+bool CardModelStore::remove() noexcept
+{
+    if (::unlink(path_.c_str()) == 0 || errno == ENOENT)
+        return true;
+    std::snprintf(error_, sizeof error_, "cannot remove %s: %s", path_.c_str(),
+                  std::strerror(errno));
+    return false;
 }
 
 }  // namespace firmware

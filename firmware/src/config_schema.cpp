@@ -12,6 +12,11 @@ namespace firmware::config_schema {
 
 namespace {
 
+// rpicam-apps' --rotation takes these for a camera (mounted upside down or not); a display may
+// also be on either side (a portrait mirror).
+constexpr std::array<int, 2> kCameraRotations = {0, 180};
+constexpr std::array<int, 4> kDisplayRotations = {0, 90, 180, 270};
+
 bool asBool(const Value& v)
 {
     return std::get<bool>(v);
@@ -125,6 +130,24 @@ const KeySpec kSchema[] = {
      .doc = "Composite a synthetic coloured card over the scene (auto: on for demo and synthetic)",
      .set = [](Config& c, const Value& v) { c.source.card = asEnum<SourceConfig::Card>(v); },
      .get = [](const Config& c) { return enumValue(c.source.card); }},
+    {.name = "source.rotation",
+     .kind = Kind::Int,
+     .min = 0,
+     .max = 180,
+     .oneOf = kCameraRotations,
+     .doc = "Camera rotation in degrees, as rpicam-apps' --rotation (180: mounted upside down)",
+     .set = [](Config& c, const Value& v) { c.source.rotation = asInt(v); },
+     .get = [](const Config& c) { return intValue(c.source.rotation); }},
+    {.name = "source.hflip",
+     .kind = Kind::Bool,
+     .doc = "Flip the camera image left-right before anything sees it, as rpicam-apps' --hflip",
+     .set = [](Config& c, const Value& v) { c.source.hflip = asBool(v); },
+     .get = [](const Config& c) -> Value { return c.source.hflip; }},
+    {.name = "source.vflip",
+     .kind = Kind::Bool,
+     .doc = "Flip the camera image upside down before anything sees it, as rpicam-apps' --vflip",
+     .set = [](Config& c, const Value& v) { c.source.vflip = asBool(v); },
+     .get = [](const Config& c) -> Value { return c.source.vflip; }},
     // [display]
     {.name = "display.spec",
      .kind = Kind::String,
@@ -168,6 +191,14 @@ const KeySpec kSchema[] = {
      .doc = "Debug HUD: draw face boxes, tracked corners and roll axes over the image",
      .set = [](Config& c, const Value& v) { c.display.debug = asBool(v); },
      .get = [](const Config& c) -> Value { return c.display.debug; }},
+    {.name = "display.rotation",
+     .kind = Kind::Int,
+     .min = 0,
+     .max = 270,
+     .oneOf = kDisplayRotations,
+     .doc = "Turn the whole picture clockwise on the panel (90 or 270 for a portrait mirror)",
+     .set = [](Config& c, const Value& v) { c.display.rotation = asInt(v); },
+     .get = [](const Config& c) { return intValue(c.display.rotation); }},
     {.name = "display.mode",
      .kind = Kind::String,
      .check = checkDisplayMode,

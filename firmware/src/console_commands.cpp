@@ -80,9 +80,9 @@ void FrameLoop::registerCommands()
                });
     if (card_)
         shell_.add(
-            "card", "card [train|reset]",
-            "the colour card: state and colour; train on the centre of the next frame; "
-            "forget the track",
+            "card", "card [train|reset|forget]",
+            "the colour card: state and colour; train on the centre of the next frame (refused "
+            "unless it is one saturated colour); forget the track; forget the trained colour",
             [this](const Args& args, Reply& reply) noexcept { card_->command(args, reply); });
     if (faces_) {
         shell_.add("faces", "faces",

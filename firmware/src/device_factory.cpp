@@ -1,5 +1,6 @@
 #include "firmware/device_factory.hpp"
 
+#include "firmware/device_wait.hpp"
 #include "firmware/exit_codes.hpp"
 #include "firmware/log.hpp"
 #include "firmware/startup_error.hpp"
@@ -8,12 +9,15 @@
 #include "platform/file_source.hpp"
 #include "platform/gpiod_button_input.hpp"
 #include "platform/headless_display.hpp"
+#include "platform/hotplug_watch.hpp"
 #include "platform/libcamera_source.hpp"
+#include "platform/oriented_source.hpp"
 #include "platform/reconnecting_source.hpp"
 #include "platform/synthetic_source.hpp"
 #include "platform/v4l2_source.hpp"
 #include "platform/window_display.hpp"
 
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <string_view>
@@ -26,6 +30,40 @@ bool startsWith(std::string_view s, std::string_view prefix)
 {
     return s.substr(0, prefix.size()) == prefix;
 }
+
+/// Started by systemd as the appliance's service (Type=notify gives it a notification socket),
+/// as opposed to a developer's run in a terminal or a script.
+bool applianceRun()
+{
+    const char* socket = std::getenv("NOTIFY_SOCKET");
+    return socket && *socket;
+}
+
+/// `auto` on the appliance with no camera yet: Lost until the pipeline is rebuilt on a camera
+/// (DeviceWait says when one came), so the loop shows the calm "camera unavailable" screen.
+class NoCameraYet final : public platform::FrameSource {
+public:
+    NoCameraYet(int width, int height) : size_{width, height}
+    {
+        std::snprintf(description_, sizeof description_, "auto (no camera yet, %dx%d)", width,
+                      height);
+    }
+    const char* description() const noexcept override { return description_; }
+    vision::Size size() const noexcept override { return size_; }
+    vision::PixelFormat format() const noexcept override { return vision::PixelFormat::RGB24; }
+    platform::SourceStatus next(vision::Frame&) noexcept override
+    {
+        return platform::SourceStatus::Lost;
+    }
+    const char* lastError() const noexcept override
+    {
+        return "no camera found; waiting for one to be plugged in";
+    }
+
+private:
+    vision::Size size_;
+    char description_[64] = "";
+};
 
 platform::ReplayRate replayRate(const Rate& rate)
 {
@@ -117,6 +155,11 @@ std::unique_ptr<platform::FrameSource> openSource(const SourceConfig& c)
             return openCamera(c, "v4l2:" + device);
         }
     }
+    if (spec == "auto" && applianceRun()) {
+        // The appliance shows the calm screen and keeps looking (DeviceWait), never a cartoon.
+        MIRROR_LOG_WARN("source auto: no camera found; waiting for one (hot-plug)");
+        return std::make_unique<NoCameraYet>(c.width, c.height);
+    }
     if (spec == "synthetic")
         return withCard(
             std::make_unique<platform::SyntheticSource>(c.width, c.height, syntheticFps(c)), c,
@@ -151,12 +194,36 @@ std::string defaultHeadlessDir()
     return std::string(state && *state ? state : "/var/lib/mirror") + "/display";
 }
 
+std::unique_ptr<platform::Display> makeHeadless(const std::string& dir, const DisplayConfig& c,
+                                                int snapshotEvery)
+{
+    try {
+        return std::make_unique<platform::HeadlessDisplay>(dir, c.width, c.height, snapshotEvery);
+    } catch (const std::exception& e) {
+        throw StartupError(kExitDisplay, e.what());
+    }
+}
+
+/// Whether some /dev/mediaN exists (a media controller: where libcamera finds its cameras).
+bool mediaDevicePresent()
+{
+    std::error_code ec;
+    for (const auto& entry : std::filesystem::directory_iterator("/dev", ec))
+        if (entry.path().filename().string().starts_with("media"))
+            return true;
+    return false;
+}
+
 }  // namespace
 
 std::unique_ptr<platform::FrameSource> makeSource(const SourceConfig& config)
 {
     try {
-        return openSource(config);
+        auto source = openSource(config);
+        const platform::Orientation orientation{config.rotation, config.hflip, config.vflip};
+        if (orientation.identity() || dynamic_cast<const NoCameraYet*>(source.get()))
+            return source;
+        return std::make_unique<platform::OrientedSource>(std::move(source), orientation);
     } catch (const StartupError&) {
         throw;
     } catch (const std::exception& e) {
@@ -177,14 +244,19 @@ std::unique_ptr<platform::Display> makeDisplay(const DisplayConfig& config,
             spec = "window";
             MIRROR_LOG_INFO("display auto: a window on the desktop");
         } else {
-            spec = "headless:" + defaultHeadlessDir();
-            MIRROR_LOG_INFO("display auto: no connected screen, rendering %s", spec.c_str());
+            // Off screen until a panel comes (DeviceWait), and bounded: snapshots only when asked
+            // for, never a picture every few frames into the state folder.
+            const std::string dir = defaultHeadlessDir();
+            MIRROR_LOG_WARN(
+                "display auto: no connected screen; rendering off screen (snapshots "
+                "on request in %s) until a panel is connected",
+                dir.c_str());
+            return makeHeadless(dir, config, 0);
         }
     }
     try {
         if (startsWith(spec, "headless:"))
-            return std::make_unique<platform::HeadlessDisplay>(spec.substr(9), config.width,
-                                                               config.height, config.snapshotEvery);
+            return makeHeadless(spec.substr(9), config, config.snapshotEvery);
         if (spec == "window")
             return std::make_unique<platform::WindowDisplay>(config.width, config.height);
         if (spec == "drm" || startsWith(spec, "drm:")) {
@@ -210,6 +282,31 @@ std::unique_ptr<platform::Display> makeDisplay(const DisplayConfig& config,
     throw StartupError(
         kExitDisplay,
         "display " + spec + ": unknown (allowed: auto, headless:DIR, drm[:CARD], window)");
+}
+
+std::unique_ptr<DeviceWait> makeDeviceWait(const Config& config,
+                                           const platform::FrameSource& source,
+                                           const platform::Display& display)
+{
+    const bool camera =
+        config.source.spec == "auto" && dynamic_cast<const NoCameraYet*>(&source) != nullptr;
+    const bool panel = config.display.spec == "auto" &&
+                       dynamic_cast<const platform::HeadlessDisplay*>(&display) != nullptr;
+    if (!camera && !panel)
+        return nullptr;
+    static constexpr const char* kSubsystems[] = {"video4linux", "drm", nullptr};
+    auto watch = std::make_unique<platform::HotplugWatch>(kSubsystems);
+    if (!watch->listening())
+        MIRROR_LOG_WARN("%s; looking for devices every 10 s instead", watch->lastError());
+    DeviceProbes probes;
+    // libcamera's check starts a CameraManager: only when a media controller is there at all
+    // (every libcamera camera has one), not every 10 s of a machine without any.
+    probes.camera = [] {
+        return platform::v4l2CaptureDeviceAvailable() ||
+               (mediaDevicePresent() && platform::libcameraCameraAvailable());
+    };
+    probes.panel = [] { return platform::drmDisplayAvailable(); };
+    return std::make_unique<DeviceWait>(camera, panel, std::move(probes), std::move(watch));
 }
 
 std::unique_ptr<platform::ButtonInput> makeButtons(const ButtonsConfig& config)

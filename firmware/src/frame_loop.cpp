@@ -32,6 +32,7 @@ render::RendererOptions rendererOptions(const DisplayConfig& d)
     o.mirror = d.mirror;
     o.fit = d.fit == DisplayConfig::Fit::Cover ? render::Fit::Cover : render::Fit::Contain;
     o.hud = d.hud;
+    o.rotation = d.rotation;
     return o;
 }
 
@@ -329,6 +330,11 @@ bool FrameLoop::finishIteration(std::int64_t now) noexcept
 {
     updateRate(now);
     serviceBugReport(now);
+    if (deviceWait_ && !restart_ && deviceWait_->poll(now)) {
+        MIRROR_LOG_INFO("%s connected: rebuilding the pipeline on it", deviceWait_->found());
+        restart_ = true;
+        requestStop();
+    }
     return true;
 }
 
@@ -348,6 +354,7 @@ void FrameLoop::showSourceLost(std::int64_t now) noexcept
         display_->present()) {
         lastPresentNs_ = monotonicNs();
         afterPresent();
+        notifier_.ready("camera unavailable, retrying");  // the mirror runs and says so: ready
     }
 }
 
@@ -421,9 +428,15 @@ void FrameLoop::writeSummary() noexcept
         std::snprintf(line + n, sizeof line - static_cast<std::size_t>(n), " (p50/p99 ms)");
     logf(summaryWorthLogging(monotonicNs()) ? LogLevel::Info : LogLevel::Debug, "%s", line);
     if (summaryFd_ >= 0) {
+        // Bounded: a mirror left running headless must not fill its storage with summaries.
+        constexpr std::int64_t kMaxSummaryBytes = 1 << 20;
+        if (summaryBytes_ > kMaxSummaryBytes && ::ftruncate(summaryFd_, 0) == 0 &&
+            ::lseek(summaryFd_, 0, SEEK_SET) == 0)
+            summaryBytes_ = 0;
         const std::size_t len = std::strlen(line);
         line[len] = '\n';
-        [[maybe_unused]] const ssize_t w = ::write(summaryFd_, line, len + 1);
+        const ssize_t w = ::write(summaryFd_, line, len + 1);
+        summaryBytes_ += w > 0 ? w : 0;
     }
 }
 

@@ -150,7 +150,9 @@ extern "C" void onStopSignal(int signal)
 
 const char* const kFooter = R"(
 Sources (--source, [source] spec):
-  auto          a libcamera camera, else a V4L2 capture device, else the demo scene
+  auto          a libcamera camera, else a V4L2 capture device; with neither, the appliance
+                (under systemd) shows "camera unavailable" and switches to a camera when one
+                is plugged in (udev), a developer's run plays the demo scene
   demo          Debian's opencv-doc sample video Megamind.avi with a synthetic coloured card moving
                 over it; the fully synthetic scene when the video is not installed
   synthetic     a procedural scene (no files needed)
@@ -165,6 +167,7 @@ Sources (--source, [source] spec):
 Displays (--display, [display] spec):
   auto          the panel (DRM/KMS) when a connected one exists, else a desktop window when a
                 display server is there, else headless in $STATE_DIRECTORY or /var/lib/mirror
+                (/display: snapshots on request only) until a panel is connected (udev)
   drm[:CARD]    the panel through DRM/KMS (GBM + EGL, page flips on vsync); [display] mode
                 "preferred", "WxH" or "WxH@Hz"; `snapshot` PNGs in [display] snapshot_dir
   window        an X11 window for development; keys: n/p next/previous overlay, o off, t train
@@ -177,7 +180,7 @@ Diagnostics console (on standard input when [console] stdin = true, and on the s
 [console] serial, e.g. /dev/ttyS0 at 115200 8N1):
   help [COMMAND], status [--json], selftest, log [error|warn|info|debug] [N], version,
   snapshot, config, faces, debug [on|off], overlay [next|prev|off|list|NAME|N|mode
-  global|per_face], buttons, card [train|reset], bug-report [PATH], reboot-mirror (rebuilds the
+  global|per_face], buttons, card [train|reset|forget], bug-report [PATH], reboot-mirror (rebuilds the
   pipeline, not the machine), quit. Long replies are streamed whole, never cut.
 
 Field tools:
@@ -309,7 +312,9 @@ int main(int argc, char** argv)
         for (;;) {
             auto frameSource = firmware::makeSource(config.source);
             auto frameDisplay = firmware::makeDisplay(config.display, config.state.dir);
+            auto deviceWait = firmware::makeDeviceWait(config, *frameSource, *frameDisplay);
             firmware::FrameLoop loop(config, std::move(frameSource), std::move(frameDisplay));
+            loop.attachDeviceWait(std::move(deviceWait));
             if (console)
                 loop.attachConsole(console.get(), ::isatty(0) == 1);
             if (serial)
@@ -329,7 +334,7 @@ int main(int argc, char** argv)
                 std::_Exit(code);
             if (!loop.restartRequested())
                 return code;
-            MIRROR_LOG_INFO("reboot-mirror: rebuilding the pipeline");
+            MIRROR_LOG_INFO("rebuilding the pipeline");
         }
     } catch (const firmware::StartupError& e) {
         fatal() << "mirror: " << e.what() << '\n';

@@ -2,6 +2,7 @@
 
 #include "gl_program.hpp"
 #include "render/hud_text.hpp"
+#include "rotated_target.hpp"
 
 #include <GLES2/gl2.h>
 #include <GLES2/gl2ext.h>
@@ -159,9 +160,50 @@ Renderer::Renderer(vision::Size videoSize, vision::PixelFormat videoFormat,
     }
     context_.image = videoSize;
     context_.mirrored = options.mirror;
+    if (options.rotation != 0 && options.rotation != 90 && options.rotation != 180 &&
+        options.rotation != 270)
+        throw std::runtime_error(what + ": rotation " + std::to_string(options.rotation) +
+                                 " (allowed: 0, 90, 180, 270)");
+    if (options.rotation != 0)
+        rotated_ = std::make_unique<detail::RotatedTarget>();
 }
 
 Renderer::~Renderer() = default;
+
+/// Runs `draw(width, height)` upright into the rotation's off-screen framebuffer, then turns
+/// the picture onto the display's; without a rotation straight into the display's.
+template <typename Draw>
+bool Renderer::drawTurned(int viewportWidth, int viewportHeight, Draw&& draw) noexcept
+{
+    if (!rotated_)
+        return draw(viewportWidth, viewportHeight);
+    int width = 0;
+    int height = 0;
+    if (!rotated_->begin(options_.rotation, viewportWidth, viewportHeight, width, height)) {
+        std::snprintf(lastError_, sizeof(lastError_),
+                      "display rotation: off-screen framebuffer %dx%d incomplete", viewportHeight,
+                      viewportWidth);
+        return false;
+    }
+    const bool drawn = draw(width, height);
+    rotated_->finish();
+    return drawn;
+}
+
+bool Renderer::draw(const vision::ConstImageView& frame, int viewportWidth, int viewportHeight,
+                    const char* hudText) noexcept
+{
+    return drawTurned(viewportWidth, viewportHeight, [&](int width, int height) noexcept {
+        return drawUpright(frame, width, height, hudText);
+    });
+}
+
+bool Renderer::drawMessage(const char* message, int viewportWidth, int viewportHeight) noexcept
+{
+    return drawTurned(viewportWidth, viewportHeight, [&](int width, int height) noexcept {
+        return drawMessageUpright(message, width, height);
+    });
+}
 
 void Renderer::addLayer(OverlayLayer* layer)
 {
@@ -173,8 +215,8 @@ void Renderer::addLayer(OverlayLayer* layer)
     layers_[layerCount_++] = layer;
 }
 
-bool Renderer::draw(const vision::ConstImageView& frame, int viewportWidth, int viewportHeight,
-                    const char* hudText) noexcept
+bool Renderer::drawUpright(const vision::ConstImageView& frame, int viewportWidth,
+                           int viewportHeight, const char* hudText) noexcept
 {
     if (viewportWidth <= 0 || viewportHeight <= 0) {
         std::snprintf(lastError_, sizeof(lastError_), "empty viewport %dx%d", viewportWidth,
@@ -288,7 +330,8 @@ bool Renderer::draw(const vision::ConstImageView& frame, int viewportWidth, int 
     return true;
 }
 
-bool Renderer::drawMessage(const char* message, int viewportWidth, int viewportHeight) noexcept
+bool Renderer::drawMessageUpright(const char* message, int viewportWidth,
+                                  int viewportHeight) noexcept
 {
     glViewport(0, 0, viewportWidth, viewportHeight);
     glDisable(GL_DEPTH_TEST);

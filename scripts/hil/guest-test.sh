@@ -485,6 +485,13 @@ check_package_installed() {
     gpio_names
     [ -n "$GPIO_CHIP" ] || { echo "no gpio-sim chip (check gpio_sim first)"; return 1; }
     gpio_pull 0 up && gpio_pull 1 up || return 1
+    install_mirror_package "--source libcamera:0 --display drm --set 'display.mode=\"640x480\"' --set 'buttons.chip=\"$GPIO_CHIP\"' --set 'buttons.lines=[0, 1]' --set buttons.long_press_ms=2000"
+}
+
+# install_mirror_package ARGS: the drop-in (the service runs `mirror ARGS`, at 320x240 with the
+# console on ttyS1, the start and watchdog limits stretched), then dpkg -i, whose postinst starts
+# the unit; the package's files, conffile, user and groups are checked.
+install_mirror_package() {
     mkdir -p /etc/systemd/system/mirror.service.d
     local watchdog
     watchdog=$(scaled 60)
@@ -498,7 +505,7 @@ WatchdogSec=$watchdog
 RestartSec=1
 ${HIL_SERVICE_TYPE:+Type=$HIL_SERVICE_TYPE}
 ExecStart=
-ExecStart=/usr/bin/mirror --config /etc/mirror/mirror.toml --source libcamera:0 --display drm --set source.width=320 --set source.height=240 --set 'display.mode="640x480"' --set console.stdin=false --set 'console.serial="/dev/ttyS1"' --set 'buttons.chip="$GPIO_CHIP"' --set 'buttons.lines=[0, 1]' --set buttons.long_press_ms=2000
+ExecStart=/usr/bin/mirror --config /etc/mirror/mirror.toml $1 --set source.width=320 --set source.height=240 --set console.stdin=false --set 'console.serial="/dev/ttyS1"'
 UNIT
     # Installed as on a machine without this user, these files, or the unit enabled. dpkg's
     # database is the host's installed-package list (dependencies are checked against it) without
@@ -521,6 +528,99 @@ UNIT
         grep -qw "$g" <<<"$groups" || { echo "user mirror not in group $g"; return 1; }
     done
     [ "$(systemctl is-enabled mirror.service 2>&1)" = enabled ] || { echo "mirror.service not enabled"; return 1; }
+}
+
+# --- boot without devices (HIL_SCENARIO=hotplug) -------------------------------------------------
+
+# The module tree in place and udev running, but only the cores a board's kernel has loaded (V4L2,
+# the media controller, DRM): no camera, no panel. The unit's DeviceAllow=char-video4linux etc.
+# resolve through /proc/devices when it starts, so the cores must be there by then.
+check_core_modules() {
+    local d=/lib/modules/$KVER
+    mkdir -p "$d/extra" && cp "$HIL_MODULES/extra/"*.ko "$d/extra/" &&
+        cp "$HIL_MODULES/root/lib/modules/$KVER/"modules.* "$d/" || return 1
+    pidof systemd-udevd >/dev/null || { echo "systemd-udevd not running"; return 1; }
+    modprobe videodev && modprobe mc && modprobe drm || { echo "cannot load videodev, mc, drm"; return 1; }
+    [ ! -e /dev/dri/card0 ] && ! ls /dev/video* >/dev/null 2>&1 || { echo "a camera or card is already there"; return 1; }
+    log "core modules loaded, no camera or card"
+}
+
+# The package with `auto` for source and display and no buttons: the postinst starts it.
+check_package_installed_bare() {
+    install_mirror_package "--source auto --display auto --set display.width=640 --set display.height=480 --set 'display.mode=\"640x480\"' --set buttons.enabled=false"
+}
+
+# READY (the unit active) with the calm screen, no restart, both waits logged, no PNG written on
+# its own into the state folder; the start-to-READY time is printed.
+check_ready_without_devices() {
+    wait_for 150 bash -c '[ "$(systemctl is-active mirror.service)" = active ]' ||
+        { echo "not active: $(systemctl show -p ActiveState,SubState,NRestarts mirror.service | tr '\n' ' ')"; return 1; }
+    local start ready
+    start=$(unit_show ExecMainStartTimestampMonotonic)
+    ready=$(unit_show ActiveEnterTimestampMonotonic)
+    local ms=$(((ready - start) / 1000))
+    echo "ready_ms=$ms scale_pct=$HIL_SCALE_PCT" >"$R/hotplug-ready.txt"
+    echo "HIL FIGURE start_to_ready_ms=$ms" >/dev/console 2>/dev/null || true
+    log "READY $ms ms after the start, without camera or panel"
+    [ "$(unit_show NRestarts)" = 0 ] || { echo "restarted $(unit_show NRestarts) times"; return 1; }
+    journal_has 'source auto: no camera found; waiting' || { echo "no wait for a camera logged"; return 1; }
+    journal_has 'display auto: no connected screen' || { echo "no wait for a panel logged"; return 1; }
+    local expect='^display: '
+    console_round 60 status || return 1
+    grep -q '^source: auto (no camera yet' "$CONSOLE" || { echo "status: $(grep -a '^source' "$CONSOLE")"; return 1; }
+    sleep "$(scaled 10)"
+    local pngs
+    pngs=$(find /var/lib/mirror -name '*.png' | wc -l)
+    ((pngs == 0)) || { echo "$pngs PNG files written into /var/lib/mirror unasked"; return 1; }
+}
+
+# vimc and vkms loaded: the same process (no restart) rebuilds on the camera and the panel.
+check_devices_plugged_in() {
+    modprobe vimc && modprobe vkms || { echo "cannot load vimc, vkms"; return 1; }
+    udevadm settle --timeout="$(scaled 30)"
+    log "vimc and vkms loaded"
+    local t0=$SECONDS
+    wait_for 150 journal_has 'connected: rebuilding the pipeline' ||
+        { echo "no rebuild: $(journalctl -q -o cat -u mirror.service | tail -3 | tr '\n' ' ')"; return 1; }
+    local expect='^display: drm' try
+    for try in 1 2 3; do
+        console_round 60 status || return 1
+        grep -q '^display: drm' "$CONSOLE" && grep -q '^source: .*libcamera' "$CONSOLE" && break
+        ((try < 3)) || { echo "status: $(grep -a '^source\|^display' "$CONSOLE" | tr '\n' ' ')"; return 1; }
+        sleep "$(scaled 20)"
+    done
+    log "on the camera and the panel $((SECONDS - t0)) s after the modules"
+    [ "$(unit_show NRestarts)" = 0 ] || { echo "the process restarted ($(unit_show NRestarts))"; return 1; }
+    journalctl --no-pager -u mirror.service >"$R/service-journal.txt" 2>&1
+}
+
+# rss_kb PID: resident memory of a process.
+rss_kb() { awk '/^VmRSS:/ {print $2}' "/proc/$1/status" 2>/dev/null; }
+
+# HIL_SOAK_MINUTES cycles: the camera unplugged (vimc.0 unbound) for a while and plugged in again,
+# one cycle per HIL_SOAK_PERIOD_S at the least (longer when the service needs it to come back);
+# the service's memory before each unplug goes to soak.txt. It must end active, and the memory
+# of the last cycles may not exceed the first's by more than 20 %.
+check_replug_soak() {
+    local drv=/sys/bus/platform/drivers/vimc i pid rss t0 first="" last=""
+    echo "cycle seconds pid rss_kb restarts" >"$R/soak.txt"
+    for ((i = 1; i <= HIL_SOAK_MINUTES; i++)); do
+        t0=$SECONDS
+        wait_for 150 bash -c '[ "$(systemctl is-active mirror.service)" = active ]' || { echo "cycle $i: not active"; return 1; }
+        pid=$(unit_show MainPID)
+        rss=$(rss_kb "$pid")
+        echo "$i $SECONDS $pid $rss $(unit_show NRestarts)" >>"$R/soak.txt"
+        echo "HIL FIGURE soak cycle=$i pid=$pid rss_kb=$rss restarts=$(unit_show NRestarts)" >/dev/console 2>/dev/null || true
+        [ -n "$first" ] || first=$rss
+        last=$rss
+        echo vimc.0 >"$drv/unbind" || { echo "cycle $i: cannot unbind"; return 1; }
+        sleep $((HIL_SOAK_PERIOD_S / 2))
+        echo vimc.0 >"$drv/bind" || { echo "cycle $i: cannot bind"; return 1; }
+        udevadm settle --timeout="$(scaled 30)"
+        while ((SECONDS - t0 < HIL_SOAK_PERIOD_S)); do sleep 1; done
+    done
+    wait_for 150 bash -c '[ "$(systemctl is-active mirror.service)" = active ]' || { echo "not active at the end"; return 1; }
+    ((last <= first * 12 / 10)) || { echo "memory grew: $first kB -> $last kB"; return 1; }
 }
 
 # --- calibration --------------------------------------------------------------------------------

@@ -22,4 +22,14 @@ if(MIRROR_BUILD_TESTS AND CMAKE_SYSTEM_PROCESSOR MATCHES "x86_64|AMD64" AND NOT 
     TIMEOUT 2000
     # The VM takes both cores: nothing else in parallel.
     RUN_SERIAL TRUE)
+  # The appliance booted without camera and panel, then both plugged in (README: HIL_SCENARIO).
+  add_test(NAME hil.boot_without_devices
+    COMMAND ${CMAKE_CURRENT_LIST_DIR}/run-hil.sh ${CMAKE_BINARY_DIR}
+    WORKING_DIRECTORY ${PROJECT_SOURCE_DIR})
+  set_tests_properties(hil.boot_without_devices PROPERTIES
+    LABELS hil
+    SKIP_RETURN_CODE 77
+    ENVIRONMENT HIL_SCENARIO=hotplug
+    TIMEOUT 2000
+    RUN_SERIAL TRUE)
 endif()

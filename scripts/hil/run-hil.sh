@@ -22,7 +22,7 @@ build=$(cd "$1" && pwd)
 timeout_s=${HIL_TIMEOUT:-400}
 calibration_ref_ms=${HIL_CALIBRATION_REF_MS:-15000}
 scale_max_pct=${HIL_SCALE_MAX_PCT:-400}
-boot_limit_s=300
+boot_limit_s=${HIL_BOOT_LIMIT_S:-300}
 timeout_max_s=$((timeout_s * scale_max_pct / 100 + boot_limit_s))
 
 # The checks the guest runs, in order; each must print "HIL PASS name" (HIL_CHECKS="a b": only
@@ -43,6 +43,14 @@ checks=${HIL_CHECKS:-"modules $device_checks mirror_headless"}
 package_checks="modules gpio_sim display_connected package_installed camera_listed
     console_selftest service_ready camera_replug fault_run_start button_press snapshot_drm
     serial_flood display_bad_mode display_fault gpio_absent serial_absent"
+# HIL_SCENARIO=hotplug: the appliance booted with neither camera nor panel (only the V4L2, media
+# and DRM cores loaded, as a board's kernel has them), `auto` for both: READY on the calm screen,
+# then vimc and vkms loaded and the same process switches to them. HIL_SOAK_MINUTES=N adds N
+# cycles of the camera unplugged and plugged in again, with the service's memory after each.
+hotplug_checks="core_modules package_installed_bare ready_without_devices devices_plugged_in"
+soak_minutes=${HIL_SOAK_MINUTES:-0}
+timeout_s=$((timeout_s + soak_minutes * 150))
+timeout_max_s=$((timeout_s * scale_max_pct / 100 + boot_limit_s))
 # The AddressSanitizer build's device tests run in the machine too when that build exists
 # (scripts/dev test builds it before the tests; HIL_ASAN_BIN overrides where to look).
 source_dir=$(cd "$here/../.." && pwd)
@@ -75,9 +83,13 @@ if [ -z "${HIL_CHECKS:-}" ] && [ -f "$build/CPackConfig.cmake" ] && [ "${HIL_SYS
     package=$(ls -t "$build"/package/mirror_*.deb | head -1)
     # shellcheck disable=SC2086,SC2116 # the words on one line
     checks=$(echo $package_checks)
+    if [ "${HIL_SCENARIO:-}" = hotplug ]; then
+        checks=$(echo $hotplug_checks)
+        ((soak_minutes > 0)) && checks="$checks replug_soak"
+    fi
 fi
 
-results=$work/results
+results=$work/results${HIL_SCENARIO:+-$HIL_SCENARIO}
 rm -rf "$results"
 mkdir -p "$results"
 cat >"$results/hil.env" <<ENV
@@ -89,6 +101,8 @@ HIL_CHECKS="$checks"
 HIL_PACKAGE=$package
 HIL_SERVICE_TYPE=${HIL_SERVICE_TYPE:-}
 HIL_FLOOD_BYTES=${HIL_FLOOD_BYTES:-1048576}
+HIL_SOAK_MINUTES=$soak_minutes
+HIL_SOAK_PERIOD_S=${HIL_SOAK_PERIOD_S:-60}
 HIL_CALIBRATION_REF_MS=$calibration_ref_ms
 HIL_SCALE_MAX_PCT=$scale_max_pct
 ENV
@@ -221,6 +235,8 @@ if grep -qx 'HIL PASS snapshot_drm' "$results/summary.txt"; then
     fi
 fi
 [ -s "$results/flood.txt" ] && hil_say "$(cat "$results/flood.txt")"
+[ -s "$results/hotplug-ready.txt" ] && hil_say "boot without devices: $(cat "$results/hotplug-ready.txt")"
+[ -s "$results/soak.txt" ] && hil_say "replug soak (memory before each unplug):" && cat "$results/soak.txt" >&2
 cat "$results/summary.txt"
 # How long each check took (guest seconds), and the check that never ended if one did not.
 grep -ao 'HIL TIME [^ ]* [0-9.]*' "$qemu_log" | tr -d '\r' >"$results/times.txt" || true

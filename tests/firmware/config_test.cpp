@@ -348,7 +348,7 @@ const std::map<std::string, std::vector<std::string>> kBadFiles = {
      {R"(4:8: config: Error while parsing key-value pair: expected value, saw '\n')"}},
     {"bad_unknown_key.toml",
      {"3:1: display.widht: unknown key (allowed: spec, width, height, fit, mirror, hud, debug, "
-      "mode, snapshot_dir, snapshot_every)"}},
+      "rotation, mode, snapshot_dir, snapshot_every)"}},
     {"bad_unknown_section.toml",
      {"4:2: camera: unknown section (allowed: source, display, log, console, vision, faces, "
       "overlay, "
@@ -384,7 +384,7 @@ const std::map<std::string, std::vector<std::string>> kBadFiles = {
       R"(8:7: display.fit: unknown value "stretch" (allowed: "cover", "contain"))",
       "9:10: display.mirror: expected boolean, got integer",
       "10:1: display.colour: unknown key (allowed: spec, width, height, fit, mirror, hud, debug, "
-      "mode, snapshot_dir, snapshot_every)",
+      "rotation, mode, snapshot_dir, snapshot_every)",
       "13:22: log.summary_interval_s: -1 is out of range (allowed: 0..3600)",
       "15:2: extras: unknown section (allowed: source, display, log, console, vision, faces, "
       "overlay, "
@@ -567,16 +567,16 @@ TEST(ConfigProblems, SpecForms)
     EXPECT_EQ(problemOf("[display]\nspec = \"x11\"\n"),
               "t.toml:2:8: display.spec: unknown display \"x11\" " + displays);
     // Control characters in a value are refused, escaped: one problem, one line.
-    EXPECT_EQ(problemOf("[display]\nspec = \"a\\nb\"\n"),
-              "t.toml:2:8: display.spec: control character 0x0A at byte 2 of \"a\\nb\" " +
-                  displays);
+    EXPECT_EQ(
+        problemOf("[display]\nspec = \"a\\nb\"\n"),
+        "t.toml:2:8: display.spec: control character 0x0A at byte 2 of \"a\\nb\" " + displays);
 }
 
 TEST(ConfigProblems, NestedUnknownKeys)
 {
     EXPECT_EQ(problemOf("[source.extra]\nx = 1\n"),
               "t.toml:1:9: source.extra: unknown key (allowed: spec, width, height, fps, loop, "
-              "rate, card)");
+              "rate, card, rotation, hflip, vflip)");
     EXPECT_EQ(problemOf("[vision]\n\"odd key\" = 1\n"),
               "t.toml:2:1: vision.\"odd key\": unknown key (allowed: chromaticity, deinterlace)");
 }
@@ -652,7 +652,7 @@ TEST(ConfigSet, ProblemsNameTheSetByIndexAfterTheFileProblems)
             R"(--set:3:1: config: expected KEY=VALUE, got "nonsense" (allowed: KEY is )"
             R"(section.key, VALUE is TOML))",
             "--set:4:9: display.widht: unknown key (allowed: spec, width, height, fit, mirror, "
-            "hud, debug, mode, snapshot_dir, snapshot_every)",
+            "hud, debug, rotation, mode, snapshot_dir, snapshot_every)",
             "--set:5:13: display.hud: Error while parsing value: could not determine value type "
             "(allowed: true, false)",
             "--set:6:9: display: expected table, got integer",

@@ -3,6 +3,7 @@
 // resumes tracking when frames come back, without allocating while it waits.
 #include "alloc_counter.hpp"
 #include "fake_console.hpp"
+#include "fake_systemd.hpp"
 #include "firmware/device_factory.hpp"
 #include "firmware/frame_loop.hpp"
 #include "firmware/log.hpp"
@@ -12,9 +13,7 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
-#include <fstream>
 #include <opencv2/imgcodecs.hpp>
-#include <sstream>
 #include <string>
 
 namespace {
@@ -46,14 +45,6 @@ private:
     vision::ImageBuffer image_;
     std::uint64_t sequence_ = 0;
 };
-
-std::string readFile(const std::string& path)
-{
-    std::ifstream in(path);
-    std::stringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
 
 /// A small headless mirror without card and faces, its output in a fresh folder `out`.
 firmware::Config lossConfig(const std::string& name, const std::string& out, double summaryS)
@@ -103,7 +94,7 @@ TEST(SourceLoss, CalmScreenWhileLostOneLogLineEachWayAndBackToFrames)
     firmware::setLogFd(2);
     ::close(logFd);
 
-    const std::string log = readFile(logPath);
+    const std::string log = testing_support::readFile(logPath);
     EXPECT_NE(log.find("source lost: test camera unplugged (retrying)"), std::string::npos) << log;
     EXPECT_EQ(log.find("source lost"), log.rfind("source lost")) << "logged once: " << log;
     EXPECT_NE(log.find("source is back"), std::string::npos) << log;
@@ -157,7 +148,7 @@ TEST(SourceLoss, TheSummaryDoesNotPushTheCauseOutOfTheLog)
     firmware::setLogFd(2);
     ::close(logFd);
 
-    const std::string log = readFile(out + "/log.txt");
+    const std::string log = testing_support::readFile(out + "/log.txt");
     std::size_t summaries = 0;
     for (std::size_t at = 0; (at = log.find(" I frames=0 ", at)) != std::string::npos; ++at)
         ++summaries;
@@ -167,6 +158,34 @@ TEST(SourceLoss, TheSummaryDoesNotPushTheCauseOutOfTheLog)
         << replies;
     const std::size_t warn = replies.rfind("W source lost");
     EXPECT_NE(warn, replies.find("W source lost")) << "in `log 5` and in `log warn 1`: " << replies;
+}
+
+/// Under systemd (Type=notify) a camera missing at boot must not keep the unit "activating" until
+/// its start timeout kills it: the calm screen shown is the mirror running, so it is READY.
+TEST(SourceLoss, CameraMissingAtBootIsStillReadyOnceTheCalmScreenIsShown)
+{
+    firmware::Config config;
+    const std::string out = testing_support::freshOutputDir("source_missing_ready");
+    config.display.spec = "headless:" + out;
+    config.display.width = 160;
+    config.display.height = 120;
+    config.display.snapshotEvery = 0;
+    config.card.enabled = false;
+    config.faces.enabled = false;
+    config.log.summaryIntervalS = 0;
+    config.state.dir = testing_support::freshOutputDir("source_missing_ready_state");
+    testing_support::FakeSystemd systemd(nullptr);
+
+    auto source = std::make_unique<FlakySource>();
+    source->lost = true;
+    firmware::FrameLoop loop(config, std::move(source), firmware::makeDisplay(config.display));
+    for (int i = 0; i < 3; ++i)
+        ASSERT_TRUE(loop.step());
+    EXPECT_EQ(loop.framesShown(), 0u);
+    std::string all;
+    for (const std::string& m : systemd.messages())
+        all += m + "|";
+    EXPECT_NE(all.find("READY=1\nSTATUS=camera unavailable"), std::string::npos) << all;
 }
 
 }  // namespace

@@ -13,6 +13,7 @@
 #include <functional>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace {
@@ -141,6 +142,58 @@ TEST(Renderer, MirrorFlipsLeftRight)
     Renderer renderer({64, 48}, PixelFormat::RGB24, options(true));
     drawAndRead(gl, renderer, makeImage(64, 48, PixelFormat::RGB24, pattern));
     EXPECT_EQ(countMismatches(gl, [](int x, int y) { return pattern(63 - x, y); }), 0);
+}
+
+struct RotationCase {
+    int degrees;
+    int displayWidth;
+    int displayHeight;
+    /// The image pixel (x, y) shown at display pixel (dx, dy), both counted from the top-left.
+    std::function<std::pair<int, int>(int dx, int dy)> source;
+};
+
+class RendererRotation : public ::testing::TestWithParam<RotationCase> {};
+
+// A portrait panel: the whole picture turns clockwise onto the display, exactly (no scaling).
+TEST_P(RendererRotation, TurnsThePictureClockwise)
+{
+    const RotationCase c = GetParam();
+    GlTestContext gl(c.displayWidth, c.displayHeight);
+    RendererOptions o = options(false);
+    o.rotation = c.degrees;
+    Renderer renderer({64, 48}, PixelFormat::RGB24, o);
+    drawAndRead(gl, renderer, makeImage(64, 48, PixelFormat::RGB24, pattern));
+    EXPECT_EQ(countMismatches(gl,
+                              [&](int x, int y) {
+                                  const auto [sx, sy] = c.source(x, y);
+                                  return pattern(sx, sy);
+                              }),
+              0);
+}
+
+INSTANTIATE_TEST_SUITE_P(Degrees, RendererRotation,
+                         ::testing::Values(RotationCase{90, 48, 64,
+                                                        [](int dx, int dy) {
+                                                            return std::pair{dy, 47 - dx};
+                                                        }},
+                                           RotationCase{180, 64, 48,
+                                                        [](int dx, int dy) {
+                                                            return std::pair{63 - dx, 47 - dy};
+                                                        }},
+                                           RotationCase{270, 48, 64,
+                                                        [](int dx, int dy) {
+                                                            return std::pair{63 - dy, dx};
+                                                        }}),
+                         [](const ::testing::TestParamInfo<RotationCase>& p) {
+                             return "Rotation" + std::to_string(p.param.degrees);
+                         });
+
+TEST(Renderer, RotationOtherThanQuarterTurnsIsRefused)
+{
+    GlTestContext gl(64, 48);
+    RendererOptions o = options(false);
+    o.rotation = 45;
+    EXPECT_THROW(Renderer({64, 48}, PixelFormat::RGB24, o), std::runtime_error);
 }
 
 struct FormatCase {

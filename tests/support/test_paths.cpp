@@ -1,6 +1,8 @@
 #include "test_paths.hpp"
 
 #include <filesystem>
+#include <fstream>
+#include <sstream>
 
 namespace testing_support {
 
@@ -26,6 +28,14 @@ std::string freshOutputDir(const std::string& name)
     std::filesystem::remove_all(dir);
     std::filesystem::create_directories(dir);
     return dir.string();
+}
+
+std::string readFile(const std::string& path)
+{
+    std::ifstream in(path);
+    std::stringstream s;
+    s << in.rdbuf();
+    return s.str();
 }
 
 }  // namespace testing_support

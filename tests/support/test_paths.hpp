@@ -12,5 +12,7 @@ std::string binaryDir();
 std::string sharedData(const std::string& relative);
 /// A fresh empty directory under the build tree for one test's output.
 std::string freshOutputDir(const std::string& name);
+/// The whole content of a file ("" when it cannot be read).
+std::string readFile(const std::string& path);
 
 }  // namespace testing_support

@@ -13,7 +13,10 @@ Rect centralRegion(Size size, float fraction) noexcept
     return {(size.width - w) / 2, (size.height - h) / 2, w, h};
 }
 
-CardStage::CardStage(Size size, const CardTrackerOptions& options) : tracker_(size, options) {}
+CardStage::CardStage(Size size, const CardTrackerOptions& options, const CardTrainingLimits& limits)
+    : tracker_(size, options), limits_(limits)
+{
+}
 
 void CardStage::requestTraining(float centralFraction) noexcept
 {
@@ -29,8 +32,12 @@ void CardStage::process(FrameState& state) noexcept
     }
     const ConstImageView& rgb = state.frame.image;
     const float fraction = pending_.exchange(0.f);
-    if (fraction > 0.f)
-        lastTrainingOk_ = tracker_.train(rgb, state.chroma, centralRegion(rgb.size(), fraction));
+    if (fraction > 0.f) {
+        // Step 1 only on a region that is the card: anything else would be learnt for good.
+        const Rect region = centralRegion(rgb.size(), fraction);
+        lastCheck_ = checkCardTrainingRegion(rgb, state.chroma, region, limits_);
+        lastTrainingOk_ = lastCheck_.ok() && tracker_.train(rgb, state.chroma, region);
+    }
     state.card = &tracker_.process(rgb, state.chroma);
 }
 

@@ -32,6 +32,9 @@ public:
     std::optional<vision::CardColorModel> load(std::string& warning) const;
     /// Writes the model atomically. False on failure, lastError() says why. Never allocates.
     bool save(const vision::CardColorModel& model) noexcept;
+    /// Deletes the saved model (`card forget`); a file already absent is no error. False on
+    /// failure, lastError() says why.
+    bool remove() noexcept;
 
 private:
     std::string dir_;

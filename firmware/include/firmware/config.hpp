@@ -30,6 +30,9 @@ struct SourceConfig {
     bool loop = true;   ///< replay files from the start when they end
     Rate rate;          ///< pacing of file replay: native, max or a fixed fps
     enum class Card { Auto, On, Off } card = Card::Auto;  ///< composite the synthetic card
+    int rotation = 0;    ///< 0 or 180 (rpicam-apps' --rotation), before the flips
+    bool hflip = false;  ///< left-right, before vision (rpicam-apps' --hflip)
+    bool vflip = false;  ///< upside down, before vision (rpicam-apps' --vflip)
 };
 
 struct DisplayConfig {
@@ -40,6 +43,7 @@ struct DisplayConfig {
     bool mirror = true;
     bool hud = true;
     bool debug = false;      ///< draw face boxes, corners and roll axes (the debug HUD)
+    int rotation = 0;        ///< the picture turned clockwise on the panel: 0, 90, 180, 270
     int snapshotEvery = 30;  ///< frames between automatic snapshots (headless); 0 = on command only
     std::string mode;        ///< drm: "" or "preferred", "WxH" or "WxH@Hz"
     std::string snapshotDir;  ///< drm: where `snapshot` writes PNGs; "" = the state folder

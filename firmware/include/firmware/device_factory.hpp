@@ -3,6 +3,7 @@
 // "synthetic", "file:PATH", "headless:DIR", ...). One implementation per device, chosen here only.
 
 #include "firmware/config.hpp"
+#include "firmware/device_wait.hpp"
 #include "platform/button_input.hpp"
 #include "platform/display.hpp"
 #include "platform/frame_source.hpp"
@@ -21,6 +22,12 @@ std::unique_ptr<platform::FrameSource> makeSource(const SourceConfig& config);
 /// without [display] snapshot_dir keeps its snapshots in `stateDir`/snapshots (none when empty).
 std::unique_ptr<platform::Display> makeDisplay(const DisplayConfig& config,
                                                const std::string& stateDir = {});
+/// What an appliance whose `auto` source or display found nothing waits for (DeviceWait on udev's
+/// events and the factory's own device checks); null when it waits for nothing. `source` and
+/// `display` are what makeSource and makeDisplay made from `config`.
+std::unique_ptr<DeviceWait> makeDeviceWait(const Config& config,
+                                           const platform::FrameSource& source,
+                                           const platform::Display& display);
 /// Opens the GPIO buttons, or returns null: when disabled, and when the chip is missing or busy
 /// (logged as one warning: the mirror runs on with its other inputs).
 std::unique_ptr<platform::ButtonInput> makeButtons(const ButtonsConfig& config);

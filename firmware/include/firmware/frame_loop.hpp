@@ -13,6 +13,7 @@
 #include "firmware/button_actions.hpp"
 #include "firmware/command_shell.hpp"
 #include "firmware/config.hpp"
+#include "firmware/device_wait.hpp"
 #include "firmware/latency_histogram.hpp"
 #include "firmware/overlay_selection.hpp"
 #include "platform/button_input.hpp"
@@ -73,6 +74,12 @@ public:
     {
         buttons_ = std::move(buttons);
     }
+    /// What an `auto` source or display that found nothing waits for (owned; null: nothing).
+    /// When it comes the loop stops for the pipeline to be rebuilt on it (restartRequested()).
+    void attachDeviceWait(std::unique_ptr<DeviceWait> wait) noexcept
+    {
+        deviceWait_ = std::move(wait);
+    }
     /// Who wears what (null when overlays are off or could not be loaded).
     const OverlaySelection* overlaySelection() const noexcept;
 
@@ -89,8 +96,9 @@ public:
     std::uint64_t framesShown() const noexcept { return framesShown_; }
     const vision::FrameState& lastFrameState() const noexcept { return state_; }
     platform::Display& display() noexcept { return *display_; }
-    /// True when the loop stopped because `reboot-mirror` asked for the pipeline to be rebuilt
-    /// (main then builds source, display and loop again; the process and console stay).
+    /// True when the loop stopped because `reboot-mirror`, a camera back in another size, or an
+    /// awaited device that came asked for the pipeline to be rebuilt (main then builds source,
+    /// display and loop again; the process and console stay).
     bool restartRequested() const noexcept { return restart_; }
     /// True when the loop stopped because its source can deliver no frame again in this process
     /// (FrameSource::needsProcessRestart): main then ends the process at once, with run()'s
@@ -180,6 +188,7 @@ private:
 
     // Buttons on the frame (null: none or unavailable) and what their presses do.
     std::unique_ptr<platform::ButtonInput> buttons_;
+    std::unique_ptr<DeviceWait> deviceWait_;
     ButtonActions buttonActions_;
     bool buttonsFailed_ = false;  // poll failed: logged once, then silent
 
@@ -193,8 +202,9 @@ private:
     std::size_t renderStep_ = 0;
     std::size_t presentStep_ = 0;
 
-    // systemd: READY after the first frame shown, a watchdog keep-alive from every iteration (a
-    // stalled loop stops them and gets restarted), a status line on changes.
+    // systemd: READY after the first frame or "camera unavailable" screen shown, a watchdog
+    // keep-alive from every iteration (a stalled loop stops them and gets restarted), a status
+    // line on changes.
     platform::ServiceNotifier notifier_;
     std::atomic<bool> stop_{false};
     bool restart_ = false;
@@ -233,6 +243,7 @@ private:
     bool bugReportFailed_ = false;
     std::int64_t loggedSummaryNs_ = 0;  // when a summary last went to the log at Info
     double loggedFps_ = 0.0;            // its frame rate
+    std::int64_t summaryBytes_ = 0;  // in summary.log now; started afresh past kMaxSummaryBytes
     char hud_[256] = "";
 };
 

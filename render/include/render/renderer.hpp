@@ -12,6 +12,10 @@
 
 namespace render {
 
+namespace detail {
+class RotatedTarget;
+}
+
 /// How the camera image fills a screen of another aspect ratio.
 enum class Fit {
     Cover,    ///< fill the screen, crop the overflow (a mirror shows no bars)
@@ -22,6 +26,9 @@ struct RendererOptions {
     bool mirror = true;  ///< draw left-right flipped, as a mirror shows a person
     Fit fit = Fit::Cover;
     bool hud = true;  ///< draw the diagnostics text (fps etc.) in the top-left corner
+    /// Turns the whole picture clockwise on the display by 0, 90, 180 or 270 degrees: for a panel
+    /// mounted on its side (portrait) or upside down. Everything drawn turns with it.
+    int rotation = 0;
 };
 
 class Renderer {
@@ -42,7 +49,8 @@ public:
     bool hudVisible() const noexcept { return options_.hud; }
     const RendererOptions& options() const noexcept { return options_; }
 
-    /// Uploads `frame` and draws everything into the bound framebuffer of the given size.
+    /// Uploads `frame` and draws everything into the bound framebuffer of the given size (the
+    /// display's; with a rotation the picture is drawn turned, at the turned size).
     /// `hudText` may hold several lines separated by '\n' (printable ASCII). An empty `frame`
     /// redraws the last uploaded picture (black before the first). Never allocates.
     /// False on a GL error (lastError() says which).
@@ -58,8 +66,15 @@ public:
     const char* lastError() const noexcept { return lastError_; }
 
 private:
+    bool drawUpright(const vision::ConstImageView& frame, int viewportWidth, int viewportHeight,
+                     const char* hudText) noexcept;
+    bool drawMessageUpright(const char* message, int viewportWidth, int viewportHeight) noexcept;
+    template <typename Draw>
+    bool drawTurned(int viewportWidth, int viewportHeight, Draw&& draw) noexcept;
+
     struct Gl;  // GL object names; defined in renderer.cpp so this header needs no GL header
     std::unique_ptr<Gl> gl_;
+    std::unique_ptr<detail::RotatedTarget> rotated_;  // null without a rotation
     vision::Size videoSize_;
     vision::PixelFormat videoFormat_;
     RendererOptions options_;

@@ -93,6 +93,8 @@ public:
     bool train(const ConstImageView& rgb, const ChromaticityPlanes& chroma, Rect region) noexcept;
     /// Installs a saved model (trained earlier). Resets the track.
     void setModel(const CardColorModel& model) noexcept;
+    /// Back to untrained: no colour to look for until train() or setModel().
+    void forgetModel() noexcept { setModel(CardColorModel{}); }
     const CardColorModel& trainedModel() const noexcept;
     const CardColorModel& currentModel() const noexcept;
 
