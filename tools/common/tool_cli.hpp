@@ -6,6 +6,8 @@
 // `mirror`) answers a usage error with one message and exit code 2, `--help`/`--version` with 0.
 
 #include <CLI/CLI.hpp>
+#include <cstdio>
+#include <cstring>
 #include <string>
 
 namespace tool_cli {
@@ -19,14 +21,20 @@ inline void addVersion(CLI::App& app, const std::string& name)
 }
 
 /// Parses the command line. Returns -1 to go on, or the exit code to leave with at once: 0 after
-/// --help or --version, kExitUsage after a usage error (CLI11 has printed what was wrong).
+/// --help or --version, kExitUsage after a usage error, said in one line ("NAME: what is wrong";
+/// CLI11's own report adds a second line).
 inline int parse(CLI::App& app, int argc, char** argv)
 {
     try {
         app.parse(argc, argv);
         return -1;
+    } catch (const CLI::Success& e) {
+        return app.exit(e);
     } catch (const CLI::ParseError& e) {
-        return app.exit(e) == 0 ? 0 : kExitUsage;
+        const char* name = argc > 0 ? std::strrchr(argv[0], '/') : nullptr;
+        name = name ? name + 1 : (argc > 0 ? argv[0] : "tool");
+        std::fprintf(stderr, "%s: %s\n", name, e.what());
+        return kExitUsage;
     }
 }
 

@@ -3,6 +3,7 @@
 // or without a hand in front; frames and a truth file each. See README.md.
 
 #include "head_scene.hpp"
+#include "tool_cli.hpp"
 
 #include <CLI/CLI.hpp>
 #include <cstdio>
@@ -24,6 +25,7 @@ int usageError(const std::string& what)
 int main(int argc, char** argv)
 {
     CLI::App app{"headgen: textured CANDIDE heads at known poses over real backgrounds"};
+    tool_cli::addVersion(app, "headgen");
     headgen::SceneOptions o;
     std::string out, size = "640x480", hand = "none", kind = "sequence";
     app.add_option("--out", out, "output folder (frames/, truth/, README.txt)");
@@ -45,13 +47,8 @@ int main(int argc, char** argv)
                    "IMM .asf files texturing the heads (default: the persons the demo model "
                    "leaves out, 04, 08, ... 40)");
     app.add_option("--data", o.dataDir, "the shared real data folder")->capture_default_str();
-    try {
-        app.parse(argc, argv);
-    } catch (const CLI::Success& e) {
-        return app.exit(e);
-    } catch (const CLI::ParseError& e) {
-        return usageError(e.what());
-    }
+    if (const int code = tool_cli::parse(app, argc, argv); code >= 0)
+        return code;
 
     int w = 0, h = 0;
     char tail = 0;
