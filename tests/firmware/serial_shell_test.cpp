@@ -97,10 +97,14 @@ TEST(SerialShell, AFloodOfRandomBytesIsReadInBoundedPiecesWithoutAllocating)
     // reads the next line only once its reply to the last one is out.
     std::atomic<bool> flooding{true};
     std::thread screen([&] {
+        // Waits with a timeout, never in a blocking read: the flood ends with nothing more to
+        // read, and the screen must still see `flooding` go false.
         char sink[4096];
-        while (flooding.load())
-            if (::read(s.terminal.master, sink, sizeof sink) <= 0)
+        while (flooding.load()) {
+            pollfd ready{s.terminal.master, POLLIN, 0};
+            if (::poll(&ready, 1, 10) > 0 && ::read(s.terminal.master, sink, sizeof sink) <= 0)
                 ::usleep(100);
+        }
     });
     std::size_t received = 0;
     std::size_t largest = 0;
