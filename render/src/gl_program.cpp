@@ -110,4 +110,20 @@ GLint GlProgram::uniform(const char* uniformName) const
     return location;
 }
 
+void drawTexturedStrip(const GlBuffer& buffer, const float (&vertices)[16]) noexcept
+{
+    glBindBuffer(GL_ARRAY_BUFFER, buffer.id());
+    glBufferSubData(GL_ARRAY_BUFFER, 0, sizeof vertices, vertices);
+    const auto stride = static_cast<GLsizei>(4 * sizeof(float));
+    glVertexAttribPointer(0, 2, GL_FLOAT, GL_FALSE, stride, reinterpret_cast<const void*>(0));
+    glVertexAttribPointer(1, 2, GL_FLOAT, GL_FALSE, stride,
+                          reinterpret_cast<const void*>(2 * sizeof(float)));
+    glEnableVertexAttribArray(0);
+    glEnableVertexAttribArray(1);
+    glDrawArrays(GL_TRIANGLE_STRIP, 0, 4);
+    glDisableVertexAttribArray(0);
+    glDisableVertexAttribArray(1);
+    glBindBuffer(GL_ARRAY_BUFFER, 0);
+}
+
 }  // namespace render::detail

@@ -64,4 +64,9 @@ private:
     GLuint id_ = 0;
 };
 
+/// Draws a quad as a 4-vertex triangle strip of interleaved (x, y, s, t) floats: uploads them into
+/// `buffer`, feeds attributes 0 (position) and 1 (texture coordinate) and unbinds the buffer.
+/// The caller has bound its program, texture and uniforms.
+void drawTexturedStrip(const GlBuffer& buffer, const float (&vertices)[16]) noexcept;
+
 }  // namespace render::detail

@@ -293,18 +293,7 @@ bool Renderer::drawUpright(const vision::ConstImageView& frame, int viewportWidt
     }
     glUseProgram(gl_->program.id());
     glUniform1i(gl_->frameUniform, 0);
-    glBindBuffer(GL_ARRAY_BUFFER, gl_->quad.id());
-    glBufferSubData(GL_ARRAY_BUFFER, 0, sizeof(gl_->quadVertices), gl_->quadVertices);
-    const auto stride = static_cast<GLsizei>(kVideoFloatsPerVertex * sizeof(float));
-    glVertexAttribPointer(0, 2, GL_FLOAT, GL_FALSE, stride, reinterpret_cast<const void*>(0));
-    glVertexAttribPointer(1, 2, GL_FLOAT, GL_FALSE, stride,
-                          reinterpret_cast<const void*>(2 * sizeof(float)));
-    glEnableVertexAttribArray(0);
-    glEnableVertexAttribArray(1);
-    glDrawArrays(GL_TRIANGLE_STRIP, 0, 4);
-    glDisableVertexAttribArray(0);
-    glDisableVertexAttribArray(1);
-    glBindBuffer(GL_ARRAY_BUFFER, 0);
+    drawTexturedStrip(gl_->quad, gl_->quadVertices);
     glBindTexture(GL_TEXTURE_2D, 0);
 
     // Layers blend with standard (non-premultiplied) alpha; destination alpha stays opaque.

@@ -150,18 +150,7 @@ void RotatedTarget::finish() noexcept
     glActiveTexture(GL_TEXTURE0);
     glBindTexture(GL_TEXTURE_2D, colour_.id());
     glUniform1i(pictureUniform_, 0);
-    glBindBuffer(GL_ARRAY_BUFFER, quad_.id());
-    glBufferSubData(GL_ARRAY_BUFFER, 0, sizeof vertices, vertices);
-    const auto stride = static_cast<GLsizei>(4 * sizeof(float));
-    glVertexAttribPointer(0, 2, GL_FLOAT, GL_FALSE, stride, reinterpret_cast<const void*>(0));
-    glVertexAttribPointer(1, 2, GL_FLOAT, GL_FALSE, stride,
-                          reinterpret_cast<const void*>(2 * sizeof(float)));
-    glEnableVertexAttribArray(0);
-    glEnableVertexAttribArray(1);
-    glDrawArrays(GL_TRIANGLE_STRIP, 0, 4);
-    glDisableVertexAttribArray(0);
-    glDisableVertexAttribArray(1);
-    glBindBuffer(GL_ARRAY_BUFFER, 0);
+    drawTexturedStrip(quad_, vertices);
     glBindTexture(GL_TEXTURE_2D, 0);
 }
 
