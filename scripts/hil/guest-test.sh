@@ -511,6 +511,10 @@ UNIT
     # database is the host's installed-package list (dependencies are checked against it) without
     # the per-package file lists: reading those thousands of files over 9p takes ~2 min under TCG.
     local admin=/var/lib/dpkg-hil
+    # The guest's root is the host's, and a container host carries Docker's policy-rc.d, which
+    # tells deb-systemd-invoke (rightly) not to start services. An appliance has none: the
+    # overlay copy goes, the host's file stays.
+    rm -f /usr/sbin/policy-rc.d
     mkdir -p "$admin/info" "$admin/updates" "$admin/triggers"
     cp /var/lib/dpkg/status /var/lib/dpkg/arch "$admin/"
     touch "$admin/available" "$admin/diversions" "$admin/statoverride"

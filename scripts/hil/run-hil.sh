@@ -35,12 +35,12 @@ timeout_max_s=$((timeout_s * scale_max_pct / 100 + boot_limit_s))
 # firmware that does not send READY/WATCHDOG yet.
 device_checks="camera_listed camera_capture display_connected gpio_sim gpio_edges serial_port"
 checks=${HIL_CHECKS:-"modules $device_checks mirror_headless"}
-# gpio_sim before the package: the service's drop-in names the chip. camera_listed after it: cam
-# only lists (the service owns the camera once it runs), while the service starts up (~50 s).
+# gpio_sim before the package: the service's drop-in names the chip. camera_listed before it too:
+# once the service has configured vimc's pipeline, cam cannot even list it (links busy).
 # camera_replug early: the fault runs must start after it (a second process opening the card
 # while the service is away would become DRM master), and their ~45-75 s start-up then overlaps
 # the button, snapshot and flood checks on the restarted service.
-package_checks="modules gpio_sim display_connected package_installed camera_listed
+package_checks="modules gpio_sim display_connected camera_listed package_installed
     console_selftest service_ready camera_replug fault_run_start button_press snapshot_drm
     serial_flood display_bad_mode display_fault gpio_absent serial_absent"
 # HIL_SCENARIO=hotplug: the appliance booted with neither camera nor panel (only the V4L2, media
