@@ -38,6 +38,7 @@ render::RendererOptions rendererOptions(const DisplayConfig& d)
 
 // While the source is lost, poll it at this pace so the console stays responsive and the CPU idle.
 constexpr auto kLostRetry = std::chrono::milliseconds(50);
+constexpr const char* kCalmScreen = "camera unavailable\nreconnecting ...";
 
 }  // namespace
 
@@ -349,7 +350,7 @@ void FrameLoop::showSourceLost(std::int64_t now) noexcept
         return;
     // The calm screen is a frame shown: `selftest` must not blame the display for the camera,
     // and a snapshot asked for meanwhile is of this screen.
-    if (renderer_->drawMessage("camera unavailable\nreconnecting ...", display_->width(),
+    if (renderer_->drawMessage(kCalmScreen, display_->width(),
                                display_->height()) &&
         display_->present()) {
         lastPresentNs_ = monotonicNs();

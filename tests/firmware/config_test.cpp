@@ -124,6 +124,14 @@ TEST(ConfigDefaults, ParseAndAgreeWithTheHeaderInitialisers)
     expectSameConfig(parseDefaults(), Config{});
 }
 
+TEST(ConfigDefaults, TheShippedConfigHidesTheDeveloperHud)
+{
+    // The packaged /etc/mirror/mirror.toml is what the people in front of the mirror see: no fps
+    // and stage times over their face (the demo and developers turn it on with display.hud=true).
+    EXPECT_FALSE(parseDefaults().display.hud);
+    EXPECT_FALSE(Config{}.display.hud);
+}
+
 TEST(ConfigDefaults, NoFileMeansBuiltInDefaults)
 {
     ConfigRequest request;

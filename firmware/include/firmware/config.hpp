@@ -41,7 +41,7 @@ struct DisplayConfig {
     int height = 720;
     enum class Fit { Cover, Contain } fit = Fit::Cover;
     bool mirror = true;
-    bool hud = true;
+    bool hud = false;
     bool debug = false;      ///< draw face boxes, corners and roll axes (the debug HUD)
     int rotation = 0;        ///< the picture turned clockwise on the panel: 0, 90, 180, 270
     int snapshotEvery = 30;  ///< frames between automatic snapshots (headless); 0 = on command only
