@@ -14,6 +14,7 @@
 #include "shape_alignment.hpp"
 #include "shape_modes.hpp"
 #include "shape_synthesis.hpp"
+#include "shared_data.hpp"
 #include "tool_cli.hpp"
 #include "training_image.hpp"
 #include "vision/aam_model.hpp"
@@ -319,7 +320,7 @@ int main(int argc, char** argv)
     CLI::App app{"aam-build: the offline Active Appearance Model builder"};
     app.require_subcommand(1);
     tool_cli::addVersion(app, "aam-build");
-    std::string wfm = "../shared/data/candide3/candide3.wfm";
+    std::string wfm = tool_data::defaultDir() + "/candide3/candide3.wfm";
     auto* mesh = app.add_subcommand("mesh", "read CANDIDE-3 and report the tracked cut of it");
     mesh->add_option("--wfm", wfm, "the CANDIDE-3 .wfm file")->capture_default_str();
     std::string points, image, drawScheme, out = "/tmp/aam-points.png";

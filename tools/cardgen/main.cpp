@@ -2,6 +2,7 @@
 // the card tracker (mirror-eval card). See scenarios.cpp for what each sequence does.
 
 #include "sequence_writer.hpp"
+#include "shared_data.hpp"
 #include "tool_cli.hpp"
 
 #include <CLI/CLI.hpp>
@@ -34,6 +35,7 @@ int main(int argc, char** argv)
         ->check(CLI::Range(2, 100000));
     app.add_option("--seed", seed, "varies the motion phases and the noise");
     app.add_option("--size", size, "frame size WIDTHxHEIGHT")->capture_default_str();
+    base.dataDir = tool_data::defaultDir();
     app.add_option("--data", base.dataDir, "the shared real data folder (backgrounds)")
         ->capture_default_str();
     app.add_option("--background", base.background, "use this photograph as background instead");
@@ -59,6 +61,11 @@ int main(int argc, char** argv)
                      "(--list shows the scenarios)\n");
         return 2;
     }
+    // Without the shared photographs the same seed renders other backgrounds: say so.
+    if (const std::string why = tool_data::missingReason(base.dataDir);
+        !why.empty() && base.background.empty())
+        std::fprintf(stderr, "cardgen: %s: backgrounds from Debian's opencv-doc images only\n",
+                     why.c_str());
     base.frames = frames;
     base.seed = seed;
     base.size = cv::Size(w, h);

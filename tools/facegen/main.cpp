@@ -5,6 +5,7 @@
 #include "compositor.hpp"
 #include "face_photo.hpp"
 #include "sequence_writer.hpp"
+#include "shared_data.hpp"
 #include "tool_cli.hpp"
 
 #include <CLI/CLI.hpp>
@@ -78,6 +79,7 @@ int main(int argc, char** argv)
     app.add_option("--frames", frames, "frames per sequence")->check(CLI::Range(2, 100000));
     app.add_option("--seed", seed, "varies faces, paths, light and noise");
     app.add_option("--size", size, "frame size WIDTHxHEIGHT")->capture_default_str();
+    base.dataDir = tool_data::defaultDir();
     app.add_option("--data", base.dataDir, "the shared real data folder")->capture_default_str();
     app.add_option("--cascade", base.cascadePath, "OpenCV cascade for static faces and checks")
         ->capture_default_str();
@@ -101,6 +103,12 @@ int main(int argc, char** argv)
             for (const auto& s : facegen::scenarios())
                 std::printf("%-12s %s\n", s.name, s.description);
             return 0;
+        }
+        // The faces are IMM photographs: without the shared data there is nothing to render.
+        if (const std::string why = tool_data::missingReason(base.dataDir);
+            !why.empty() && (measure || checkDir.empty())) {
+            std::fprintf(stderr, "facegen: %s\n", why.c_str());
+            return 1;
         }
         if (measure)
             return measureSize(base.dataDir, base.cascadePath);

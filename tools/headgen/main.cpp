@@ -3,6 +3,7 @@
 // or without a hand in front; frames and a truth file each. See README.md.
 
 #include "head_scene.hpp"
+#include "shared_data.hpp"
 #include "tool_cli.hpp"
 
 #include <CLI/CLI.hpp>
@@ -46,6 +47,7 @@ int main(int argc, char** argv)
     app.add_option("--faces", o.faces,
                    "IMM .asf files texturing the heads (default: the persons the demo model "
                    "leaves out, 04, 08, ... 40)");
+    o.dataDir = tool_data::defaultDir();
     app.add_option("--data", o.dataDir, "the shared real data folder")->capture_default_str();
     if (const int code = tool_cli::parse(app, argc, argv); code >= 0)
         return code;

@@ -8,6 +8,7 @@
 #include "detect_eval.hpp"
 #include "liveness_eval.hpp"
 #include "roll_eval.hpp"
+#include "shared_data.hpp"
 #include "tool_cli.hpp"
 #include "track_eval.hpp"
 
@@ -187,6 +188,7 @@ int main(int argc, char** argv)
     aamCmd->add_option("--fitter", aam.fitter, "our side: baseline (until vision's fit lands)")
         ->capture_default_str();
     aamCmd->add_option("--model", aam.model, "the .aam model file a real fit loads");
+    aam.dataDir = tool_data::defaultDir();
     aamCmd->add_option("--data", aam.dataDir, "the shared data folder (CANDIDE-3, IMM)")
         ->capture_default_str();
     aamCmd->add_option("--predictor", aam.predictor, "dlib's 68-point shape predictor")
