@@ -92,17 +92,36 @@ double syntheticFps(const SourceConfig& c)
     return c.fps;
 }
 
+/// The scene opens with the card held up over the centre, as a person does before `card train`,
+/// so a demo can train and then track it.
+platform::CardSceneOptions sceneCard() noexcept
+{
+    platform::CardSceneOptions options;
+    options.introFrames = 45;
+    return options;
+}
+
+/// The demo video's card: held up only briefly (scripts/dev demo trains at once), then smaller and
+/// kept to the lower corner that shows on the mirrored screen's lower left, where the video has
+/// table and clothes, never a face: the hats are on from the first seconds.
+platform::CardSceneOptions demoVideoCard() noexcept
+{
+    platform::CardSceneOptions options;
+    options.introFrames = 12;
+    options.heightFraction = 0.24;
+    options.pathCentreX = 0.8;
+    options.pathCentreY = 0.72;
+    return options;
+}
+
 std::unique_ptr<platform::FrameSource> withCard(std::unique_ptr<platform::FrameSource> scene,
-                                                const SourceConfig& c, bool cardByDefault)
+                                                const SourceConfig& c, bool cardByDefault,
+                                                const platform::CardSceneOptions& options)
 {
     const bool card =
         c.card == SourceConfig::Card::On || (c.card == SourceConfig::Card::Auto && cardByDefault);
     if (!card)
         return scene;
-    // The scene opens with the card held up over the centre, as a person does before `card
-    // train`, so a demo can train and then track it.
-    platform::CardSceneOptions options;
-    options.introFrames = 45;
     return std::make_unique<platform::CardSceneSource>(std::move(scene), options);
 }
 
@@ -163,11 +182,11 @@ std::unique_ptr<platform::FrameSource> openSource(const SourceConfig& c)
     if (spec == "synthetic")
         return withCard(
             std::make_unique<platform::SyntheticSource>(c.width, c.height, syntheticFps(c)), c,
-            true);
+            true, sceneCard());
     if (startsWith(spec, "file:"))
         return withCard(std::make_unique<platform::FileSource>(spec.substr(5), c.loop,
                                                                replayRate(c.rate), c.fps),
-                        c, false);
+                        c, false, sceneCard());
     if (spec == "demo" || spec == "auto") {
         if (spec == "auto")
             MIRROR_LOG_INFO("source auto: no camera found, playing the demo scene");
@@ -175,12 +194,12 @@ std::unique_ptr<platform::FrameSource> openSource(const SourceConfig& c)
         if (std::filesystem::exists(kDemoVideoPath, ec))
             return withCard(std::make_unique<platform::FileSource>(kDemoVideoPath, true,
                                                                    replayRate(c.rate), c.fps),
-                            c, true);
+                            c, true, demoVideoCard());
         MIRROR_LOG_INFO("demo video %s not installed (package opencv-doc): synthetic scene",
                         kDemoVideoPath);
         return withCard(
             std::make_unique<platform::SyntheticSource>(c.width, c.height, syntheticFps(c)), c,
-            true);
+            true, sceneCard());
     }
     throw StartupError(kExitSource, "source " + spec +
                                         ": unknown (allowed: auto, demo, synthetic, file:PATH, "

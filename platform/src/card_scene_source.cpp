@@ -68,8 +68,16 @@ CardSceneSource::CardSceneSource(std::unique_ptr<FrameSource> inner,
         halfDiag *= scale;
         maxR = focal_ * halfDiag / (depth_ - halfDiag);
     }
-    pathX_ = std::max(0.0, 0.5 * (w - 1.0) - maxR - kMarginPx);
-    pathY_ = std::max(0.0, 0.5 * (h - 1.0) - maxR - kMarginPx);
+    // The path's centre where asked, moved in until the card fits around it; the swing is what
+    // room is left on the nearer side.
+    const double reachX = std::max(0.0, 0.5 * (w - 1.0) - maxR - kMarginPx);
+    const double reachY = std::max(0.0, 0.5 * (h - 1.0) - maxR - kMarginPx);
+    centreX_ = std::clamp(std::clamp(options_.pathCentreX, 0.0, 1.0) * (w - 1.0),
+                          0.5 * (w - 1.0) - reachX, 0.5 * (w - 1.0) + reachX);
+    centreY_ = std::clamp(std::clamp(options_.pathCentreY, 0.0, 1.0) * (h - 1.0),
+                          0.5 * (h - 1.0) - reachY, 0.5 * (h - 1.0) + reachY);
+    pathX_ = reachX - std::abs(centreX_ - 0.5 * (w - 1.0));
+    pathY_ = reachY - std::abs(centreY_ - 0.5 * (h - 1.0));
 
     char colour[48];
     std::snprintf(colour, sizeof colour, "card #%02x%02x%02x", options_.red, options_.green,
@@ -89,8 +97,8 @@ CardSceneSource::Pose CardSceneSource::poseFor(std::uint64_t sequence) const noe
     double yaw = kMaxYaw * std::sin(kTwoPi * t / 7.3);
     double pitch = kMaxPitch * std::sin(kTwoPi * t / 9.1 + 1.0);
     double roll = kMaxRoll * std::sin(kTwoPi * t / 11.7 + 0.5);
-    double cx = 0.5 * (size_.width - 1) + pathX_ * std::sin(kTwoPi * t / 13.0 + 0.3);
-    double cy = 0.5 * (size_.height - 1) + pathY_ * std::sin(kTwoPi * t / 8.9 + 1.7);
+    double cx = centreX_ + pathX_ * std::sin(kTwoPi * t / 13.0 + 0.3);
+    double cy = centreY_ + pathY_ * std::sin(kTwoPi * t / 8.9 + 1.7);
     double depth = depth_;
     if (intro > 0 && sequence < 2 * intro) {
         // Held pose: centred, square to the camera, its half-height 0.34 of the frame height.

@@ -144,6 +144,35 @@ TEST(CardSceneSource, TrainingIntroHoldsTheCardOverTheCentreThenJoinsThePath)
     }
 }
 
+TEST(CardSceneSource, APathCentredInACornerKeepsTheCardThereAndInsideTheFrame)
+{
+    // The demo video's card: trained over the centre, then kept to the lower right of the
+    // camera's frame (the mirrored screen's lower left), clear of the faces in the middle.
+    const vision::Size size{720, 528};
+    CardSceneOptions options;
+    options.introFrames = 12;
+    options.heightFraction = 0.24;
+    options.pathCentreX = 0.8;
+    options.pathCentreY = 0.72;
+    CardSceneSource card(
+        std::make_unique<PatternSource>(size.width, size.height, vision::PixelFormat::RGB24),
+        options);
+    float minX = 1e9f, maxX = 0.f, minY = 1e9f;
+    for (std::uint64_t seq = 24; seq < 3000; seq += 5) {
+        for (const auto& p : card.cornersFor(seq)) {
+            EXPECT_GE(p.x, 0.0f);
+            EXPECT_LE(p.x, size.width - 1.0f);
+            EXPECT_LE(p.y, size.height - 1.0f);
+            minX = std::min(minX, p.x);
+            maxX = std::max(maxX, p.x);
+            minY = std::min(minY, p.y);
+        }
+    }
+    EXPECT_GT(minX, 0.5f * size.width);   // never over the middle of the view
+    EXPECT_GT(minY, 0.4f * size.height);  // nor over the upper part, where the heads are
+    EXPECT_GT(maxX - minX, 0.25f * size.width) << "it still moves";
+}
+
 TEST(CardSceneSource, CardIsAboutAThirdOfTheFrameHeightAndMoves)
 {
     CardSceneSource card(std::make_unique<PatternSource>(640, 480, vision::PixelFormat::RGB24));

@@ -21,6 +21,10 @@ struct CardSceneOptions {
     double shading = 0.08;         ///< brightness varies within 1 +- shading (gradient and tilt)
     int noise = 4;                 ///< per-pixel noise, +- grey levels, deterministic
     int introFrames = 0;           ///< frames held up for training first, then as many easing out
+    /// Where the card wanders after the intro: the centre of its path as fractions of the frame
+    /// (0.5, 0.5 with the whole view to swing in; elsewhere it swings as far as it still fits).
+    double pathCentreX = 0.5;
+    double pathCentreY = 0.5;
 
     /// Green construction paper (the default).
     static constexpr CardSceneOptions greenCard() noexcept { return {}; }
@@ -91,7 +95,9 @@ private:
     double halfHeight_ = 0.0;  ///< along its own y axis
     double focal_ = 0.0;       ///< focal length of the virtual camera
     double depth_ = 0.0;       ///< distance of the card centre from the camera
-    double pathX_ = 0.0;       ///< amplitude of the centre's path around the frame centre
+    double centreX_ = 0.0;     ///< the centre of the card's path, in pixels
+    double centreY_ = 0.0;
+    double pathX_ = 0.0;       ///< amplitude of the card centre's path around it
     double pathY_ = 0.0;
 };
 
