@@ -345,6 +345,22 @@ check_snapshot_drm() {
     cp "$png" "$R/snapshot-drm.png"
 }
 
+# The console's bug report, written by the service itself (user mirror): the tarball names the
+# unit's journal of this boot, with the service's own lines in it, not a permissions notice.
+check_bug_report() {
+    local expect='bug-report: (wrote|failed)'
+    console_round 90 bug-report || return 1
+    local tgz
+    tgz=$(grep -aoE 'bug-report: wrote /[^ ]*\.tar\.gz' "$CONSOLE" | head -1 | cut -d' ' -f3)
+    [ -n "$tgz" ] || { echo "no bug report: $(grep -a 'bug-report' "$CONSOLE" | tr '\n' ' ')"; return 1; }
+    mkdir -p "$R/bug-report" && tar -xzf "$tgz" -C "$R/bug-report" || { echo "cannot unpack $tgz"; return 1; }
+    local journal
+    journal=$(find "$R/bug-report" -name journal.txt | head -1)
+    [ -n "$journal" ] || { echo "no journal.txt in $tgz"; return 1; }
+    grep -q 'running: source libcamera' "$journal" ||
+        { echo "journal.txt holds no line of the service: $(head -c 300 "$journal" | tr '\n' ' ')"; return 1; }
+}
+
 # The camera unplugged while the mirror runs (vimc unbound from its driver): libcamera 0.0.3
 # cannot let go of it, so the mirror says so once and exits for systemd to start it again; the
 # camera is bound again and the new process reaches READY and delivers frames.
@@ -528,7 +544,7 @@ UNIT
     id mirror >"$R/mirror-user.txt" 2>&1 || { echo "no user mirror"; return 1; }
     local g groups
     groups=$(id -nG mirror)
-    for g in video render gpio dialout; do
+    for g in video render gpio dialout systemd-journal; do
         grep -qw "$g" <<<"$groups" || { echo "user mirror not in group $g"; return 1; }
     done
     [ "$(systemctl is-enabled mirror.service 2>&1)" = enabled ] || { echo "mirror.service not enabled"; return 1; }

@@ -42,7 +42,7 @@ checks=${HIL_CHECKS:-"modules $device_checks mirror_headless"}
 # the button, snapshot and flood checks on the restarted service.
 package_checks="modules gpio_sim display_connected camera_listed package_installed
     console_selftest service_ready camera_replug fault_run_start button_press snapshot_drm
-    serial_flood display_bad_mode display_fault gpio_absent serial_absent"
+    bug_report serial_flood display_bad_mode display_fault gpio_absent serial_absent"
 # HIL_SCENARIO=hotplug: the appliance booted with neither camera nor panel (only the V4L2, media
 # and DRM cores loaded, as a board's kernel has them), `auto` for both: READY on the calm screen,
 # then vimc and vkms loaded and the same process switches to them. HIL_SOAK_MINUTES=N adds N

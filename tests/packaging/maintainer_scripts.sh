@@ -3,7 +3,7 @@
 # against a scratch root (DPKG_ROOT, which deb-systemd-helper honours) with the commands that would
 # touch this machine (user and group tools, udevadm, systemctl, deb-systemd-invoke) replaced by
 # stubs that only log:
-#   - a first install enables mirror.service;
+#   - a first install enables mirror.service and puts the user mirror in its groups;
 #   - an admin's disable survives an upgrade (postinst configure OLD-VERSION) and a reconfigure;
 #   - remove masks the unit, a reinstall unmasks it, purge forgets its state and /var/lib/mirror.
 # Usage: maintainer_scripts.sh SCRIPTS_DIR UNIT_DIR
@@ -30,7 +30,10 @@ run() { DPKG_MAINTSCRIPT_NAME=$1 sh -e "$scripts/$1" "${@:2}" || fail "$* exited
 
 run postinst configure
 [ -L "$link" ] || fail "a first install did not enable mirror.service"
-echo "first install: enabled"
+# The devices' groups, and the journal's: the console's bug report reads the unit's journal.
+grep -qx 'usermod --append --groups video,render,gpio,dialout,systemd-journal mirror' \
+    "$root/calls.log" || fail "the user mirror is not put in its groups: $(grep usermod "$root/calls.log")"
+echo "first install: enabled, user mirror in video, render, gpio, dialout, systemd-journal"
 
 rm "$link"  # what `systemctl disable mirror.service` does
 run postinst configure 0.9.0
