@@ -20,6 +20,13 @@ FaceControl::FaceControl(vision::MotionStage& motion, vision::FaceStage& faces,
 
 void FaceControl::update(std::span<const vision::TrackedFace> faces) noexcept
 {
+    if (faces_.cuts() != cuts_) {
+        cuts_ = faces_.cuts();
+        MIRROR_LOG_INFO(
+            "faces: the whole view changed at once (scene cut %ld): tracks dropped, "
+            "the frame scanned",
+            cuts_);
+    }
     int shown = 0;
     for (const vision::TrackedFace& f : faces)
         shown += f.shown();

@@ -37,6 +37,7 @@ private:
     vision::FaceStage& faces_;
     std::unique_ptr<render::FaceDebugLayer> debug_;
     int shown_ = 0;  // shown faces last frame, for logging changes once
+    long cuts_ = 0;  // scene cuts logged
 };
 
 }  // namespace firmware

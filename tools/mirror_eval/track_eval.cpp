@@ -203,6 +203,7 @@ TrackScore runConfig(const Config& config, const FaceSequence& seq,
         }
         ++score.frames;
     }
+    score.sceneCuts = faceStage.cuts();
     return score;
 }
 
@@ -330,6 +331,8 @@ int runTrackEval(const TrackEvalOptions& o, std::FILE* out, std::FILE* err)
                          meanOf(scores.front().staticMaskFractions),
                          meanOf(scores.front().movingMaskFractions));
         const TrackScore& last = scores.back();
+        std::fprintf(out, "scene cuts (tracks dropped, the whole frame scanned): %ld\n",
+                     last.sceneCuts);
         std::fprintf(out, "track: precision=%.4f recall=%.4f roll_mean_err_deg=%.2f\n",
                      last.precision(), last.recall(), last.rollMeanError());
         return 0;

@@ -60,6 +60,7 @@ struct TrackScore {
     /// Shown faces on a moving face partly out of view (matched by its box or by the part in
     /// view): neither true nor false positives, as a miss of such a face is no false negative.
     long partlyInView = 0;
+    long sceneCuts = 0;  ///< frames the pipeline took for a scene cut (vision::SceneCut)
     std::vector<double> rollErrors;     ///< |roll - truth roll| per true positive
     std::vector<double> centreSteps;    ///< |(c - g)_t - (c - g)_{t-1}| per continued match, px
     std::vector<double> ious;           ///< IoU of every true positive

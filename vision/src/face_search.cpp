@@ -48,12 +48,13 @@ void FaceSearch::remember(Rect box, int frameIndex) noexcept
     slot->expires = frameIndex + options_.recentFaceFrames;
 }
 
-void FaceSearch::reset() noexcept
+void FaceSearch::reset(bool wholeImage) noexcept
 {
     count_ = 0;
     detector_.resetIncremental();
     recent_.fill(RecentArea{});
     coldStart_ = true;
+    wholeImage_ = wholeImage;
 }
 
 long FaceSearch::scan(const Frame& frame) noexcept
@@ -66,8 +67,9 @@ long FaceSearch::scan(const Frame& frame) noexcept
     const std::span<const Rect> exclude(excluded_.data(), static_cast<std::size_t>(excludedCount));
     const bool haveMotion = frame.motion != nullptr;
     const Size s = options_.imageSize;
-    if (coldStart_ && haveMotion && frame.motion->sum(0, 0, s.width, s.height) > 0)
+    if (coldStart_ && !wholeImage_ && haveMotion && frame.motion->sum(0, 0, s.width, s.height) > 0)
         coldStart_ = false;
+    wholeImage_ = false;
     cold_ = coldStart_;
     if (haveMotion)
         prepareMask(frame);

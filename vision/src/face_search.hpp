@@ -54,7 +54,9 @@ public:
     /// A shown face was dropped at `box`: its place is searched for recentFaceFrames frames.
     void remember(Rect box, int frameIndex) noexcept;
     /// Forgets the scan in progress, the hits and the remembered places; the next scan is cold.
-    void reset() noexcept;
+    /// `wholeImage`: cold even where the mask marks motion (after a scene cut, where everything
+    /// moves and every face in the new picture is new), in one frame.
+    void reset(bool wholeImage = false) noexcept;
 
 private:
     struct RecentArea {
@@ -75,8 +77,9 @@ private:
     /// tells still from moving. A scan spread over frames by the window budget goes on masked
     /// once there is motion (a whole-image scan would keep a moving face waiting).
     bool coldStart_ = true;
-    bool cold_ = false;  ///< the last scan() was cold
-    long budget_ = 0;    ///< the last scan()'s budget (0: none)
+    bool wholeImage_ = false;  ///< reset(true): the next scan is cold whatever moves
+    bool cold_ = false;        ///< the last scan() was cold
+    long budget_ = 0;          ///< the last scan()'s budget (0: none)
     std::array<RecentArea, 16> recent_{};
     std::array<Rect, kMaxTracks> excluded_{};
     std::vector<Rect> hits_;  ///< the last completed scan's faces

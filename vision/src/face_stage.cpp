@@ -23,8 +23,16 @@ FaceStage::FaceStage(const MotionStage& motion, const HaarCascade& cascade,
 
 void FaceStage::process(FrameState& state) noexcept
 {
-    if (state.valid && motion_.ok())
-        tracker_.process(motion_.gray(), motion_.mask(), &motion_.maskIntegral());
+    if (state.valid && motion_.ok()) {
+        const ConstImageView gray = motion_.gray();
+        if (sceneCut_.update(motion_.foregroundPixels(), gray.width * gray.height)) {
+            tracker_.resetAfterCut();  // the tracks are of a picture that is gone
+            ++cuts_;
+        }
+        tracker_.process(gray, motion_.mask(), &motion_.maskIntegral());
+    } else {
+        sceneCut_.reset();
+    }
     // Working image -> frame coordinates: the motion stage's grey image is the frame shrunk by
     // an integer factor (pixel centres: x_frame = (x + 0.5) * k - 0.5).
     const float k = static_cast<float>(motion_.downscale());

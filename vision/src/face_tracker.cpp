@@ -498,6 +498,12 @@ void FaceTracker::reset() noexcept
     impl_->search.reset();
 }
 
+void FaceTracker::resetAfterCut() noexcept
+{
+    reset();
+    impl_->search.reset(true);
+}
+
 const FaceTrackerOptions& FaceTracker::options() const noexcept
 {
     return impl_->options;

@@ -4,6 +4,7 @@
 // FrameState::faces for the renderer, the HUD and the console.
 #include "vision/face_tracker.hpp"
 #include "vision/motion_stage.hpp"
+#include "vision/scene_cut.hpp"
 #include "vision/stage.hpp"
 
 #include <array>
@@ -19,8 +20,11 @@ public:
 
     const char* name() const noexcept override { return "faces"; }
     /// Skips invalid frames and frames the motion stage could not use (faces then stay as they
-    /// were; FrameState::faces is set either way).
+    /// were; FrameState::faces is set either way). At a scene cut (SceneCut) the tracks are
+    /// dropped first and the whole frame is scanned, as at start-up.
     void process(FrameState& state) noexcept override;
+    /// Scene cuts seen since start-up.
+    long cuts() const noexcept { return cuts_; }
 
     /// The faces of the last frame in camera-frame coordinates (points too), oldest first.
     std::span<const TrackedFace> faces() const noexcept { return {frameFaces_.data(), count_}; }
@@ -40,6 +44,8 @@ private:
     std::array<TrackedFace, kMaxFaces> frameFaces_{};
     std::array<std::array<Point2f, kMaxPoints>, kMaxFaces> points_{};
     std::size_t count_ = 0;
+    SceneCut sceneCut_;
+    long cuts_ = 0;
 };
 
 }  // namespace vision

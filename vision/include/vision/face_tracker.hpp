@@ -128,6 +128,9 @@ public:
 
     /// Drops every track (e.g. after the camera came back).
     void reset() noexcept;
+    /// Drops every track and scans the whole next frame at once, moving or not: after a scene
+    /// cut (SceneCut), where everything moves and every face is new.
+    void resetAfterCut() noexcept;
     const FaceTrackerOptions& options() const noexcept;
     const char* lastError() const noexcept;
 
