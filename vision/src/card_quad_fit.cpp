@@ -175,6 +175,7 @@ QuadFit fitQuad(const ConstImageView& rgb, const Quad& seed, const QuadJudge& ju
                 float guide) noexcept
 {
     QuadFit f;
+    bool unfoundEdge = false;
     refineTwice(rgb, seed, *judge.options, guide, f);
     // Found afresh (§2 future work: recovery), an edge in view that its seed's walks did not find
     // is the colour's guess: something of the card's colour joined the component there and the
@@ -190,6 +191,8 @@ QuadFit fitQuad(const ConstImageView& rgb, const Quad& seed, const QuadJudge& ju
             refineTwice(rgb, f.raw, *judge.options, guide, deep, true);
             if (deep.refinement.edgesFitted == 4)
                 f = deep;
+            else
+                unfoundEdge = true;
         }
     }
     if (judge.measured && carryHiddenEdge(*judge.measured, judge.frame, f.refinement))
@@ -204,6 +207,11 @@ QuadFit fitQuad(const ConstImageView& rgb, const Quad& seed, const QuadJudge& ju
     f.why = implausibleQuad(f, judge);
     if (!f.why)
         f.why = unlikeTheCard(f, judge);
+    // Not walked to even from deep inside, that edge is only the colour's hull: a piece of the
+    // card clipped by the light or hidden by a hand, or something of its colour. Nothing of the
+    // track vouches for it, so the card is not taken as found from it.
+    if (!f.why && unfoundEdge)
+        f.why = "an edge in view not found";
     return f;
 }
 

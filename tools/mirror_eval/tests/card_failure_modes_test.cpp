@@ -51,6 +51,17 @@ TEST(CardFailureModes, AnEdgeTheColoursQuadMisplacedIsFoundWhenFindingTheCard)
     expectHeld(runScenario("hard", 6007, 1, 16, 150), 1.0, 0.95);
 }
 
+// Found again after a loss under a light ramp that clips, the card's colour covered only part of
+// it: three edges were walked to, the fourth was the colour's hull across the card, and the
+// quad was taken with a corner 130-150 px off for six frames. An edge in view found by no walk
+// does not make a found card; it is lost until its edges are seen (a few frames longer).
+TEST(CardFailureModes, ACardFoundAgainNeedsEveryEdgeInViewSeen)
+{
+    const TrackerRun run = runScenario("hard", 3012, 84, 99, 150);
+    EXPECT_LE(run.metrics.maxErrPx, 6.0) << misses(run);
+    EXPECT_EQ(run.metrics.falseTrackingFrames, 0);
+}
+
 // An arm across the middle cut the card in two and the top piece was too thin to join: the
 // quad of the bottom half (the arm's straight edge taken for the card's) was kept for 20 frames.
 TEST(CardFailureModes, AnArmAcrossTheCardDoesNotHalveIt)
