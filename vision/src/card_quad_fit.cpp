@@ -17,8 +17,11 @@ float edgeLength(const Quad& q, int i) noexcept
 }
 
 /// Two passes, a wide one from the seed and a narrow one from its result.
+/// With `deep`, the wide pass starts its walks as deep inside the card as the refinement allows
+/// (0.35 of the shortest edge): the first step from there is the card's own edge, not the
+/// outline of something of its colour that joined the component and pushed the seed out.
 void refineTwice(const ConstImageView& rgb, const Quad& seed, const CardTrackerOptions& o,
-                 float guide, QuadFit& fit) noexcept
+                 float guide, QuadFit& fit, bool deep = false) noexcept
 {
     EdgeRefinementOptions eo;
     eo.maxSeedDistance = guide;
@@ -28,6 +31,8 @@ void refineTwice(const ConstImageView& rgb, const Quad& seed, const CardTrackerO
     eo.inlierDistance = o.inlierDistance;
     const float scale = std::sqrt(std::max(quadArea(seed), 1.f));
     eo.searchInside = eo.searchOutside = std::clamp(o.coarseSearch * scale, 6.f, 48.f);
+    if (deep)
+        eo.searchInside = scale;  // edge_refinement caps it at 0.35 of the shortest edge
     refineQuad(rgb, seed, eo, fit.refinement);
     fit.raw = canonicalOrder(fit.refinement.quad);
     eo.searchInside = eo.searchOutside = o.fineSearch;
@@ -170,7 +175,26 @@ QuadFit fitQuad(const ConstImageView& rgb, const Quad& seed, const QuadJudge& ju
                 float guide) noexcept
 {
     QuadFit f;
+    bool unfoundEdge = false;
     refineTwice(rgb, seed, *judge.options, guide, f);
+    // Found afresh (§2 future work: recovery), an edge in view that its seed's walks did not find
+    // is the colour's guess: something of the card's colour joined the component there and the
+    // hull's edge lies outside the card. Walked again from deep inside, the card's edge is the
+    // first step; kept only when it completes the quad.
+    if (!judge.tracking && f.refinement.edgesFitted == 3 && isConvexClockwise(f.raw)) {
+        int k = 0;
+        while (f.refinement.fitted[k])
+            ++k;
+        const Point2f a = f.refinement.quad[k], b = f.refinement.quad[(k + 1) % 4];
+        if (!nearBorder(a, judge.frame) && !nearBorder(b, judge.frame)) {
+            QuadFit deep;
+            refineTwice(rgb, f.raw, *judge.options, guide, deep, true);
+            if (deep.refinement.edgesFitted == 4)
+                f = deep;
+            else
+                unfoundEdge = true;
+        }
+    }
     if (judge.measured && carryHiddenEdge(*judge.measured, judge.frame, f.refinement))
         f.raw = canonicalOrder(f.refinement.quad);
     // Plausibility: the beyond-the-dissertation lost-track test.
@@ -183,6 +207,11 @@ QuadFit fitQuad(const ConstImageView& rgb, const Quad& seed, const QuadJudge& ju
     f.why = implausibleQuad(f, judge);
     if (!f.why)
         f.why = unlikeTheCard(f, judge);
+    // Not walked to even from deep inside, that edge is only the colour's hull: a piece of the
+    // card clipped by the light or hidden by a hand, or something of its colour. Nothing of the
+    // track vouches for it, so the card is not taken as found from it.
+    if (!f.why && unfoundEdge)
+        f.why = "an edge in view not found";
     return f;
 }
 

@@ -42,6 +42,26 @@ TEST(CardFailureModes, TheCardPassingNearAPatchOfItsColourDoesNotStretchToIt)
     expectHeld(runScenario("hard", 6, 200, 239), 1.0, 0.95);
 }
 
+// Found afresh at rest (frame 0 trains with the card filling the view), the component of the
+// card's colour had something joined at one edge: the hull's edge there lay outside the card,
+// its walks found no edge, and the quad kept that edge from the colour (a corner 50 px off for
+// the 16 frames the card rested). That edge is walked again from deep inside the card now.
+TEST(CardFailureModes, AnEdgeTheColoursQuadMisplacedIsFoundWhenFindingTheCard)
+{
+    expectHeld(runScenario("hard", 6007, 1, 16, 150), 1.0, 0.95);
+}
+
+// Found again after a loss under a light ramp that clips, the card's colour covered only part of
+// it: three edges were walked to, the fourth was the colour's hull across the card, and the
+// quad was taken with a corner 130-150 px off for six frames. An edge in view found by no walk
+// does not make a found card; it is lost until its edges are seen (a few frames longer).
+TEST(CardFailureModes, ACardFoundAgainNeedsEveryEdgeInViewSeen)
+{
+    const TrackerRun run = runScenario("hard", 3012, 84, 99, 150);
+    EXPECT_LE(run.metrics.maxErrPx, 6.0) << misses(run);
+    EXPECT_EQ(run.metrics.falseTrackingFrames, 0);
+}
+
 // An arm across the middle cut the card in two and the top piece was too thin to join: the
 // quad of the bottom half (the arm's straight edge taken for the card's) was kept for 20 frames.
 TEST(CardFailureModes, AnArmAcrossTheCardDoesNotHalveIt)
