@@ -29,7 +29,7 @@ AamStart meshBox(const AamFitResult& fit) noexcept
 }  // namespace
 
 TrackedFaceFitter::TrackedFaceFitter(const AamModel& model, const TrackedFaceFitterOptions& options)
-    : fitter_(model, options.fit), options_(options)
+    : fitter_(model, options.fit), options_(options), triangles_(model.mesh.triangles)
 {
     const std::array<int, 4> corners{kCandideEyeOpenings[0].outerCorner,
                                      kCandideEyeOpenings[0].innerCorner,
