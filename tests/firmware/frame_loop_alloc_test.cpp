@@ -14,6 +14,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
@@ -88,6 +89,7 @@ struct RealFacesRun {
     int framesFitted = 0;  ///< frames with an AAM fit that holds (ok) on a shown face
     long fitIterations = 0;
     int fits = 0;
+    int okFits = 0, okFitsInTheirBox = 0;  ///< the fits' eyes in frame coordinates, in the box
     std::string console;
 };
 
@@ -139,6 +141,14 @@ RealFacesRun runRealFaces(const std::string& name, const std::string& model)
                     ++run.fits;
                     run.fitIterations += fit.iterations;
                     fitted = fitted || fit.ok();
+                    if (!fit.ok())
+                        continue;
+                    ++run.okFits;
+                    for (const vision::TrackedFace& f : state.faces)
+                        if (f.id == fit.faceId &&
+                            std::abs(fit.eyeMidpoint.x - f.centre.x) < 0.5f * f.size &&
+                            std::abs(fit.eyeMidpoint.y - f.centre.y) < 0.5f * f.size)
+                            ++run.okFitsInTheirBox;
                 }
                 run.framesFitted += fitted;
             }
@@ -177,6 +187,7 @@ TEST(FrameLoopAllocations, FittingTheAamToRealFacesMakesNoHeapAllocations)
     const RealFacesRun run = runRealFaces("frame_loop_alloc_aam", model);
     EXPECT_GE(run.framesWithFace, 195);
     EXPECT_GE(run.fits, 195) << "every shown face is fitted";
+    EXPECT_EQ(run.okFitsInTheirBox, run.okFits) << "fits in frame coordinates, on their face";
     EXPECT_NE(run.console.find("face 1: aam "), std::string::npos) << run.console;
     EXPECT_NE(run.console.find("jaw_drop"), std::string::npos) << run.console;
     std::printf(
