@@ -38,6 +38,8 @@ public:
     }
     void setDebugHud(bool on) noexcept { debug_->setVisible(on); }
     bool debugHud() const noexcept { return debug_->visible(); }
+    /// The AAM's stage runs (a model loaded, §5.3).
+    bool aamLoaded() const noexcept { return aam_ != nullptr; }
     /// Writes what `faces` prints: the counts, then one line per tracked face.
     void format(Reply& reply) const noexcept;
 
