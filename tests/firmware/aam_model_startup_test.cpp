@@ -16,7 +16,8 @@
 
 namespace {
 
-constexpr const char* kCascade = "/usr/share/opencv4/haarcascades/haarcascade_frontalface_default.xml";
+constexpr const char* kCascade =
+    "/usr/share/opencv4/haarcascades/haarcascade_frontalface_default.xml";
 
 /// The warning lines logged while building a pipeline for `model`, and what was built.
 struct Built {
@@ -106,8 +107,7 @@ TEST_F(AamModelStartup, CorruptModelIsOneWarningAndTheFacesKeepTheTwoDPose)
         EXPECT_NE(b.stages.faces, nullptr) << path;
         ASSERT_EQ(b.warnings.size(), 1u) << path;
         EXPECT_NE(b.warnings[0].find(path), std::string::npos) << b.warnings[0];
-        EXPECT_NE(b.warnings[0].find("faces keep the 2D pose"), std::string::npos)
-            << b.warnings[0];
+        EXPECT_NE(b.warnings[0].find("faces keep the 2D pose"), std::string::npos) << b.warnings[0];
         EXPECT_EQ(b.warnings[0].find('\n'), b.warnings[0].size() - 1) << "one line";
     }
 }

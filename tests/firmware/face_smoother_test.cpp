@@ -52,7 +52,8 @@ TEST(FaceSmoother, FittedYawAndPitchJitterIsSteadied)
         ASSERT_TRUE(out.ok());
         if (frame >= 30) {
             rawSwing += 3.0;
-            smoothSwing += std::abs(out.yawDegrees - lastYaw) + std::abs(out.pitchDegrees - lastPitch);
+            smoothSwing +=
+                std::abs(out.yawDegrees - lastYaw) + std::abs(out.pitchDegrees - lastPitch);
         }
         lastYaw = out.yawDegrees;
         lastPitch = out.pitchDegrees;

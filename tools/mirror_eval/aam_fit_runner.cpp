@@ -33,10 +33,9 @@ AamFitRunner::AamFitRunner(const std::string& modelPath, const std::string& data
 std::string AamFitRunner::label() const
 {
     char text[128];
-    std::snprintf(text, sizeof text,
-                  "aam fit (TrackedFaceFitter; on dlib's boxes: width %.3f, down %.3f)",
-                  static_cast<double>(placement_.widthOverBox),
-                  static_cast<double>(placement_.downOverBox));
+    std::snprintf(
+        text, sizeof text, "aam fit (TrackedFaceFitter; on dlib's boxes: width %.3f, down %.3f)",
+        static_cast<double>(placement_.widthOverBox), static_cast<double>(placement_.downOverBox));
     return text;
 }
 

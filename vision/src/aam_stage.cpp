@@ -19,7 +19,9 @@ void AamStage::process(FrameState& state) noexcept
         // Working image -> frame coordinates, as FaceStage converts the faces.
         const float k = static_cast<float>(motion_.downscale());
         const float shift = 0.5f * k - 0.5f;
-        const auto toFrame = [k, shift](Point2f p) { return Point2f{p.x * k + shift, p.y * k + shift}; };
+        const auto toFrame = [k, shift](Point2f p) {
+            return Point2f{p.x * k + shift, p.y * k + shift};
+        };
         const std::span<const FaceFit> fits = fitter_.fits();
         count_ = std::min(fits.size(), fits_.size());
         for (std::size_t i = 0; i < count_; ++i) {

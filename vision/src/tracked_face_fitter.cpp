@@ -31,10 +31,9 @@ AamStart meshBox(const AamFitResult& fit) noexcept
 TrackedFaceFitter::TrackedFaceFitter(const AamModel& model, const TrackedFaceFitterOptions& options)
     : fitter_(model, options.fit), options_(options), triangles_(model.mesh.triangles)
 {
-    const std::array<int, 4> corners{kCandideEyeOpenings[0].outerCorner,
-                                     kCandideEyeOpenings[0].innerCorner,
-                                     kCandideEyeOpenings[1].outerCorner,
-                                     kCandideEyeOpenings[1].innerCorner};
+    const std::array<int, 4> corners{
+        kCandideEyeOpenings[0].outerCorner, kCandideEyeOpenings[0].innerCorner,
+        kCandideEyeOpenings[1].outerCorner, kCandideEyeOpenings[1].innerCorner};
     for (std::size_t i = 0; i < corners.size(); ++i)
         eyeCorners_[i] = model.mesh.indexOfCandideVertex(corners[i]);
     float x0 = 1e30f, x1 = -1e30f;

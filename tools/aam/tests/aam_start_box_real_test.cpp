@@ -19,19 +19,20 @@
 #include "wfm_reader.hpp"
 
 #include <gtest/gtest.h>
-#include <opencv2/imgcodecs.hpp>
-#include <opencv2/imgproc.hpp>
 
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
 #include <optional>
 
 namespace {
 
 using testing_support::sharedData;
 
-constexpr const char* kCascade = "/usr/share/opencv4/haarcascades/haarcascade_frontalface_default.xml";
+constexpr const char* kCascade =
+    "/usr/share/opencv4/haarcascades/haarcascade_frontalface_default.xml";
 
 struct Stats {
     int n = 0, missed = 0;
@@ -58,13 +59,14 @@ std::optional<vision::TrackedFace> detectedFace(const cv::Mat& grey, double cx, 
     options.maxFrameSize = {half.cols, half.rows};
     options.minSize = {24, 24};
     vision::FaceDetector detector(cascade, options);
-    const vision::ConstImageView view{half.data, half.cols, half.rows, static_cast<int>(half.step[0]),
-                                      vision::PixelFormat::Gray8};
+    const vision::ConstImageView view{half.data, half.cols, half.rows,
+                                      static_cast<int>(half.step[0]), vision::PixelFormat::Gray8};
     detector.detect(view);
     std::optional<vision::TrackedFace> best;
     for (const vision::Rect& r : detector.faces()) {
         const double side = 2.0 * r.width;
-        const double bx = 2.0 * (r.x + 0.5 * r.width) - 0.5, by = 2.0 * (r.y + 0.5 * r.height) - 0.5;
+        const double bx = 2.0 * (r.x + 0.5 * r.width) - 0.5,
+                     by = 2.0 * (r.y + 0.5 * r.height) - 0.5;
         if (std::abs(cx - bx) > 0.5 * side || std::abs(cy - by) > 0.5 * side ||
             (best && side <= best->size))
             continue;
@@ -129,11 +131,11 @@ TEST(AamStartBox, PlacementInTheTrackersBoxAsMeasuredOnRealFaces)
     for (const auto& [name, s] : {std::pair{"IMM", imm}, std::pair{"FGNet", fgnet}}) {
         if (s.n == 0)
             continue;
-        std::printf("%s: %d faces (%d without a box): width %.3f (sd %.3f), down %.3f (sd %.3f), "
-                    "right %.3f (sd %.3f) of the box side\n",
-                    name, s.n, s.missed, s.width / s.n, Stats::sd(s.width, s.width2, s.n),
-                    s.down / s.n, Stats::sd(s.down, s.down2, s.n), s.side / s.n,
-                    Stats::sd(s.side, s.side2, s.n));
+        std::printf(
+            "%s: %d faces (%d without a box): width %.3f (sd %.3f), down %.3f (sd %.3f), "
+            "right %.3f (sd %.3f) of the box side\n",
+            name, s.n, s.missed, s.width / s.n, Stats::sd(s.width, s.width2, s.n), s.down / s.n,
+            Stats::sd(s.down, s.down2, s.n), s.side / s.n, Stats::sd(s.side, s.side2, s.n));
         EXPECT_NEAR(placement.widthOverBox, s.width / s.n,
                     std::max(0.01, Stats::sd(s.width, s.width2, s.n)))
             << name;
@@ -176,11 +178,11 @@ TEST(AamStartBox, TurnedImmHeadsFittedFromTheTrackersBoxes)
                                                   vision::PixelFormat::Gray8};
                 fitter.process(view, {&*face, 1});
                 const vision::FaceFit& fit = fitter.fits()[0];
-                std::printf("%s: %s yaw %.1f pitch %.1f roll %.1f error %.2f iterations %d\n",
-                            stem, fit.status(), static_cast<double>(fit.yawDegrees),
+                std::printf("%s: %s yaw %.1f pitch %.1f roll %.1f error %.2f iterations %d\n", stem,
+                            fit.status(), static_cast<double>(fit.yawDegrees),
                             static_cast<double>(fit.pitchDegrees),
-                            static_cast<double>(fit.rollDegrees),
-                            static_cast<double>(fit.fitError), fit.iterations);
+                            static_cast<double>(fit.rollDegrees), static_cast<double>(fit.fitError),
+                            fit.iterations);
                 if (!fit.ok())
                     continue;
                 ++held;
@@ -190,13 +192,13 @@ TEST(AamStartBox, TurnedImmHeadsFittedFromTheTrackersBoxes)
                 magnitude += std::abs(fit.yawDegrees);
                 iterations += fit.iterations;
             }
-        std::printf("IMM type %d: %d images, %d boxes, %d fits hold, %d turned the right way, "
-                    "mean |yaw| %.1f deg, %.1f iterations\n",
-                    kind, images, boxes, held, rightSign, held ? magnitude / held : 0.0,
-                    held ? iterations / held : 0.0);
+        std::printf(
+            "IMM type %d: %d images, %d boxes, %d fits hold, %d turned the right way, "
+            "mean |yaw| %.1f deg, %.1f iterations\n",
+            kind, images, boxes, held, rightSign, held ? magnitude / held : 0.0,
+            held ? iterations / held : 0.0);
         EXPECT_EQ(rightSign, held) << "a fit that holds is never turned the wrong way";
     }
 }
 
 }  // namespace
-

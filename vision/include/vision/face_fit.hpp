@@ -17,8 +17,8 @@ namespace vision {
 /// kTrackedAnimationUnits: Jaw drop, Lip stretcher, Brow lowerer, Outer brow raiser, Upper lip
 /// raiser, Lip corner depressor).
 inline constexpr std::array<std::string_view, kAamAnimationUnits> kFaceFitAnimationNames{
-    "jaw_drop", "lip_stretcher", "brow_lowerer", "outer_brow_raiser", "upper_lip_raiser",
-    "lip_corner_depressor"};
+    "jaw_drop",          "lip_stretcher",    "brow_lowerer",
+    "outer_brow_raiser", "upper_lip_raiser", "lip_corner_depressor"};
 
 struct FaceFit {
     int faceId = 0;        ///< the TrackedFace::id it belongs to
@@ -33,7 +33,7 @@ struct FaceFit {
     Point2f translation{};  ///< where CANDIDE's origin projects, image pixels
     float scale = 0.f;      ///< image pixels per CANDIDE unit
     std::array<float, kAamAnimationUnits> animation{};  ///< named by kFaceFitAnimationNames
-    float fitError = 0.f;  ///< AamFitResult::fitError
+    float fitError = 0.f;                               ///< AamFitResult::fitError
     int iterations = 0;
     /// The midpoint of the fitted eye corners (image pixels) and the tracker box side the fitted
     /// mesh corresponds to (its width over the start placement's width ratio): what
