@@ -11,14 +11,17 @@ constexpr const char* kFaceStateNames[] = {"tentative", "shown", "missing"};
 }  // namespace
 
 FaceControl::FaceControl(vision::MotionStage& motion, vision::FaceStage& faces,
-                         render::Renderer& renderer, bool debugHud)
-    : motion_(motion), faces_(faces), debug_(std::make_unique<render::FaceDebugLayer>())
+                         vision::AamStage* aam, render::Renderer& renderer, bool debugHud)
+    : motion_(motion), faces_(faces), aam_(aam), debug_(std::make_unique<render::FaceDebugLayer>())
 {
     debug_->setVisible(debugHud);
+    if (aam_ != nullptr)
+        debug_->setMeshTriangles(aam_->fitter().triangles());
     renderer.addLayer(debug_.get());
 }
 
-void FaceControl::update(std::span<const vision::TrackedFace> faces) noexcept
+void FaceControl::update(std::span<const vision::TrackedFace> faces,
+                         std::span<const vision::FaceFit> fits) noexcept
 {
     if (faces_.cuts() != cuts_) {
         cuts_ = faces_.cuts();
@@ -34,6 +37,7 @@ void FaceControl::update(std::span<const vision::TrackedFace> faces) noexcept
         MIRROR_LOG_INFO("faces: %d shown (was %d)", shown, shown_);
     shown_ = shown;
     debug_->update(faces);
+    debug_->updateFits(fits);
 }
 
 void FaceControl::format(Reply& reply) const noexcept
@@ -52,6 +56,29 @@ void FaceControl::format(Reply& reply) const noexcept
             static_cast<double>(f.centre.y), static_cast<double>(f.size),
             static_cast<double>(f.rollDegrees), static_cast<double>(f.confidence), f.age,
             f.pointCount);
+    if (aam_ == nullptr)
+        return;
+    // §5.3: the fit of each face, or why its overlays keep the 2D pose.
+    const std::span<const vision::FaceFit> fits = aam_->fits();
+    for (const vision::TrackedFace& f : faces) {
+        const vision::FaceFit* fit = vision::fitFor(fits, f.id);
+        if (fit == nullptr || !fit->fitted) {
+            reply.printf("face %d: aam not fitted (2D pose)\n", f.id);
+            continue;
+        }
+        reply.printf("face %d: aam %s%s yaw %.1f pitch %.1f roll %.1f deg error %.2f "
+                     "iterations %d\n",
+                     f.id, fit->status(), fit->ok() ? "" : " (2D pose)",
+                     static_cast<double>(fit->yawDegrees), static_cast<double>(fit->pitchDegrees),
+                     static_cast<double>(fit->rollDegrees), static_cast<double>(fit->fitError),
+                     fit->iterations);
+        reply.printf("face %d: aam", f.id);
+        for (std::size_t u = 0; u < vision::kFaceFitAnimationNames.size(); ++u)
+            reply.printf(" %.*s %.2f", static_cast<int>(vision::kFaceFitAnimationNames[u].size()),
+                         vision::kFaceFitAnimationNames[u].data(),
+                         static_cast<double>(fit->animation[u]));
+        reply.printf("\n");
+    }
 }
 
 }  // namespace firmware

@@ -21,7 +21,8 @@ FaceSmoother::Slot* FaceSmoother::slotFor(int faceId) noexcept
 }
 
 std::span<const vision::TrackedFace> FaceSmoother::apply(std::span<const vision::TrackedFace> faces,
-                                                         std::int64_t timeNs) noexcept
+                                                         std::int64_t timeNs,
+                                                         std::span<const vision::FaceFit> fits) noexcept
 {
     // Seconds since the last frame; the first frame and clock jumps get a nominal 30 fps step.
     float dt = lastNs_ != 0 ? static_cast<float>(timeNs - lastNs_) * 1e-9f : 1.f / 30.f;
@@ -33,7 +34,8 @@ std::span<const vision::TrackedFace> FaceSmoother::apply(std::span<const vision:
     const std::size_t n = std::min(faces.size(), out_.size());
     for (std::size_t i = 0; i < n; ++i) {
         vision::TrackedFace f = faces[i];
-        if (Slot* s = slotFor(f.id)) {
+        Slot* s = slotFor(f.id);
+        if (s != nullptr) {
             s->seen = true;
             f.centre.x = s->x.filter(f.centre.x, dt);
             f.centre.y = s->y.filter(f.centre.y, dt);
@@ -41,7 +43,28 @@ std::span<const vision::TrackedFace> FaceSmoother::apply(std::span<const vision:
             f.rollDegrees = s->roll.filter(f.rollDegrees, dt);
         }
         out_[i] = f;
+        vision::FaceFit& fit = fitsOut_[i];
+        const vision::FaceFit* measured = vision::fitFor(fits, f.id);
+        if (measured != nullptr) {
+            fit = *measured;
+        } else {
+            fit = vision::FaceFit{};
+            fit.faceId = f.id;
+        }
+        if (s == nullptr)
+            continue;
+        if (!fit.ok()) {
+            s->resetFit();
+            continue;
+        }
+        fit.yawDegrees = s->yaw.filter(fit.yawDegrees, dt);
+        fit.pitchDegrees = s->pitch.filter(fit.pitchDegrees, dt);
+        fit.rollDegrees = s->fitRoll.filter(fit.rollDegrees, dt);
+        fit.eyeMidpoint.x = s->eyeX.filter(fit.eyeMidpoint.x, dt);
+        fit.eyeMidpoint.y = s->eyeY.filter(fit.eyeMidpoint.y, dt);
+        fit.faceSize = s->fitSize.filter(fit.faceSize, dt);
     }
+    count_ = n;
     for (Slot& s : slots_)
         if (!s.seen)
             s.faceId = 0;  // dropped: its filters start afresh if the id ever came back

@@ -67,8 +67,8 @@ FrameLoop::FrameLoop(const Config& config, std::unique_ptr<platform::FrameSource
     overlays_ =
         std::make_unique<OverlayControl>(config_, stages.faces, *renderer_, *display_, size);
     if (stages.faces)
-        faces_ = std::make_unique<FaceControl>(*stages.motion, *stages.faces, *renderer_,
-                                               config.display.debug);
+        faces_ = std::make_unique<FaceControl>(*stages.motion, *stages.faces, stages.aam,
+                                               *renderer_, config.display.debug);
 
     timings_[stepCount_++].name = "wait";
     timings_[stepCount_++].name = "capture";
@@ -249,7 +249,7 @@ void FrameLoop::noteVisionResults() noexcept
         if (const char* report = card_->update(state_))
             tellConsoles(report);
     if (faces_)
-        faces_->update(state_.faces);
+        faces_->update(state_.faces, state_.fits);
 }
 
 void FrameLoop::handleInputsAndOverlays() noexcept
@@ -257,7 +257,7 @@ void FrameLoop::handleInputsAndOverlays() noexcept
     pollButtons();
     pollKeys();
     // Fades and smoothing run on the loop's clock: what the viewer sees is wall time.
-    overlays_->update(state_.faces, monotonicNs());
+    overlays_->update(state_.faces, state_.fits, monotonicNs());
 }
 
 bool FrameLoop::render() noexcept

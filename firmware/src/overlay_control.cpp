@@ -32,6 +32,7 @@ OverlayControl::OverlayControl(const Config& config, const vision::FaceStage* fa
                                vision::Size frameSize)
     : faces_(faces), renderer_(renderer), display_(display)
 {
+    frameSize_ = frameSize;
     if (faces_ && config.overlay.enabled)
         load(config, frameSize);
 }
@@ -118,19 +119,30 @@ void OverlayControl::warmUp(vision::Size size)
     layer_->setFaces({});
 }
 
-void OverlayControl::update(std::span<const vision::TrackedFace> faces, std::int64_t now) noexcept
+void OverlayControl::update(std::span<const vision::TrackedFace> faces,
+                            std::span<const vision::FaceFit> fits, std::int64_t now) noexcept
 {
     if (!selection_)
         return;
     selection_->update(faces, now);
-    // §6: overlays ride on smoothed poses (no jitter, no visible lag), lit like the face.
+    // §6: overlays ride on smoothed poses (no jitter, no visible lag), lit like the face; by the
+    // fitted head's full pose where the AAM's fit holds (§5.3), else by the box.
+    const std::span<const vision::TrackedFace> smoothed = smoother_.apply(faces, now, fits);
+    const std::span<const vision::FaceFit> smoothedFits = smoother_.fits();
+    const vision::CameraModel camera{frameSize_, layer_->options().verticalFovDegrees};
     std::size_t count = 0;
-    for (const vision::TrackedFace& f : smoother_.apply(faces, now)) {
+    for (std::size_t i = 0; i < smoothed.size(); ++i) {
+        const vision::TrackedFace& f = smoothed[i];
         if (count == drawings_.size())
             break;
         render::FaceDrawing& d = drawings_[count++];
         d = render::FaceDrawing{};
         d.face = f;
+        if (i < smoothedFits.size() && smoothedFits[i].ok()) {
+            d.hasPose = true;
+            d.pose = vision::headPoseFromFit(smoothedFits[i], camera,
+                                             layer_->options().head.faceWidthMetres);
+        }
         if (!f.shown())
             continue;  // not drawn: wears nothing
         const OverlayChoice choice = selection_->choiceFor(f.id);

@@ -37,8 +37,11 @@ public:
     /// Why overlays are off although enabled ("" when fine or disabled).
     const std::string& problem() const noexcept { return problem_; }
 
-    /// After the vision stages of a good frame (`faces`: FrameState::faces), on the loop's clock.
-    void update(std::span<const vision::TrackedFace> faces, std::int64_t nowNs) noexcept;
+    /// After the vision stages of a good frame (`faces`, `fits`: FrameState's), on the loop's
+    /// clock. A face whose AAM fit holds is drawn by its full pose (headPoseFromFit, §5.3), the
+    /// others by their box (the 2D pose).
+    void update(std::span<const vision::TrackedFace> faces, std::span<const vision::FaceFit> fits,
+                std::int64_t nowNs) noexcept;
     /// `overlay [next|prev|off|list|NAME|mode global|per_face]`; `faces` as for update().
     void command(const Args& args, std::span<const vision::TrackedFace> faces,
                  Reply& reply) noexcept;
@@ -56,6 +59,7 @@ private:
     std::unique_ptr<OverlayStateStore> store_;
     std::uint32_t savedGeneration_ = 0;
     FaceSmoother smoother_;
+    vision::Size frameSize_{};  ///< the camera image the faces are in (the overlays' camera)
     /// This frame's faces as the layer draws them (what each wears, its fade and light).
     std::array<render::FaceDrawing, render::FaceOverlayLayer::kMaxFaces> drawings_{};
     std::string problem_;

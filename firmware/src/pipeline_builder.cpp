@@ -1,12 +1,14 @@
 #include "pipeline_builder.hpp"
 
 #include "firmware/log.hpp"
+#include "vision/aam_model.hpp"
 #include "vision/chromaticity_stage.hpp"
 #include "vision/deinterlace_stage.hpp"
 #include "vision/frame_check_stage.hpp"
 #include "vision/haar_cascade.hpp"
 
 #include <memory>
+#include <stdexcept>
 
 namespace firmware {
 
@@ -76,6 +78,28 @@ void addFaceStages(const Config& config, vision::Size size, vision::Pipeline& pi
                     kTrackingNames[static_cast<int>(c.tracking)]);
 }
 
+/// §5.3: the AAM fit of every shown face, after the face stage, when `[faces] model` names a model
+/// that loads. Anything wrong with it is one warning line: the mirror runs on with the 2D pose.
+void addAamStage(const Config& config, vision::Pipeline& pipeline, VisionStages& stages)
+{
+    const std::string& path = config.faces.model;
+    const vision::AamModelFile file = vision::loadAamModel(path);
+    if (!file.ok) {
+        MIRROR_LOG_WARN("faces: model %s; faces keep the 2D pose", file.problem.c_str());
+        return;
+    }
+    try {
+        auto stage = std::make_unique<vision::AamStage>(*stages.motion, *stages.faces, file.model);
+        MIRROR_LOG_INFO("faces: model %s (%d vertices, %zu shape modes, %zu appearance modes)",
+                        path.c_str(), stage->fitter().vertexCount(), file.model.shapeModeCount(),
+                        file.model.appearanceModeCount());
+        stages.aam = stage.get();
+        pipeline.add(std::move(stage));
+    } catch (const std::exception& e) {
+        MIRROR_LOG_WARN("faces: model %s: %s; faces keep the 2D pose", path.c_str(), e.what());
+    }
+}
+
 }  // namespace
 
 VisionStages buildPipeline(const Config& config, vision::Size size, vision::PixelFormat format,
@@ -97,8 +121,11 @@ VisionStages buildPipeline(const Config& config, vision::Size size, vision::Pixe
         stages.card = stage.get();
         pipeline.add(std::move(stage));
     }
-    if (config.faces.enabled)
+    if (config.faces.enabled) {
         addFaceStages(config, size, pipeline, stages);
+        if (!config.faces.model.empty())
+            addAamStage(config, pipeline, stages);
+    }
     return stages;
 }
 

@@ -1,8 +1,10 @@
 #pragma once
 // The vision pipeline the config asks for: frame check, deinterlacer, chromaticity, the card
-// tracker (§2), motion and faces (§3-§4), in the order they run.
+// tracker (§2), motion and faces (§3-§4), and the AAM fit of each face (§5.3) when a model is
+// loaded, in the order they run.
 
 #include "firmware/config.hpp"
+#include "vision/aam_stage.hpp"
 #include "vision/card_stage.hpp"
 #include "vision/face_stage.hpp"
 #include "vision/motion_stage.hpp"
@@ -16,10 +18,12 @@ struct VisionStages {
     vision::CardStage* card = nullptr;
     vision::MotionStage* motion = nullptr;
     vision::FaceStage* faces = nullptr;
+    vision::AamStage* aam = nullptr;  ///< null without `[faces] model` or when it did not load
 };
 
 /// Adds every configured stage for frames of `size` and `format` to `pipeline`. Throws on bad
-/// options or a missing or broken face cascade (one line).
+/// options or a missing or broken face cascade (one line). The AAM model (`[faces] model`) is read
+/// here: a missing or broken one is one warning line, and the faces keep the 2D pose.
 VisionStages buildPipeline(const Config& config, vision::Size size, vision::PixelFormat format,
                            vision::Pipeline& pipeline);
 

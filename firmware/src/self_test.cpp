@@ -1,6 +1,7 @@
 // FrameLoop's `selftest`: one PASS/FAIL/SKIP line per check of camera, display, state folder,
 // vision assets, overlays and the GPIO buttons.
 #include "firmware/frame_loop.hpp"
+#include "face_control.hpp"
 #include "monotonic_clock.hpp"
 #include "overlay_control.hpp"
 
@@ -68,6 +69,13 @@ int FrameLoop::selfTest(Reply& reply) const noexcept
         check(faces_ != nullptr, "faces", "cascade %s loaded", config_.faces.cascade.c_str());
     else
         reply.printf("SKIP faces: disabled in the config\n");
+    if (config_.faces.enabled && !config_.faces.model.empty()) {
+        const bool loaded = faces_ != nullptr && faces_->aamLoaded();
+        check(loaded, "aam", "model %s %s", config_.faces.model.c_str(),
+              loaded ? "loaded" : "not loaded, faces keep the 2D pose (the log says why)");
+    } else {
+        reply.printf("SKIP aam: no model in the config (faces.model)\n");
+    }
     if (config_.faces.enabled && config_.overlay.enabled) {
         const OverlaySelection* selection = overlays_->selection();
         const std::string& problem = overlays_->problem();

@@ -34,6 +34,8 @@ constexpr float kTentative[4] = {1.0f, 0.9f, 0.1f, 0.8f};
 constexpr float kMissing[4] = {1.0f, 0.5f, 0.1f, 0.8f};
 constexpr float kAxis[4] = {1.0f, 0.2f, 0.9f, 0.9f};
 constexpr float kPoint[4] = {0.2f, 0.9f, 1.0f, 0.9f};
+constexpr float kMeshFitted[4] = {1.0f, 1.0f, 1.0f, 0.7f};
+constexpr float kMeshFailed[4] = {1.0f, 0.2f, 0.2f, 0.7f};
 
 /// Each face: 4 box edges, the axis, and its points, 6 vertices (two triangles) each.
 constexpr int kSegmentsPerFace = 5 + FaceDebugLayer::kMaxPointsPerFace;
@@ -56,6 +58,10 @@ struct FaceDebugLayer::Gl {
     std::array<Face, kMaxFaces> faces{};
     int count = 0;
     std::array<float, kVerticesPerFace * 2> vertices{};
+    std::vector<std::pair<int, int>> meshEdges;  ///< each edge of the fitted mesh once
+    std::vector<float> meshVertices;             ///< 6 vertices per edge
+    std::array<vision::FaceFit, kMaxFaces> fits{};
+    int fitCount = 0;
 };
 
 FaceDebugLayer::FaceDebugLayer() : gl_(std::make_unique<Gl>()) {}
@@ -75,9 +81,27 @@ void FaceDebugLayer::update(std::span<const vision::TrackedFace> faces) noexcept
     }
 }
 
+void FaceDebugLayer::setMeshTriangles(std::span<const std::array<int, 3>> triangles)
+{
+    std::vector<std::pair<int, int>>& edges = gl_->meshEdges;
+    edges.clear();
+    for (const std::array<int, 3>& t : triangles)
+        for (int k = 0; k < 3; ++k)
+            edges.emplace_back(std::min(t[k], t[(k + 1) % 3]), std::max(t[k], t[(k + 1) % 3]));
+    std::sort(edges.begin(), edges.end());
+    edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+    gl_->meshVertices.assign(edges.size() * 6 * 2, 0.f);
+}
+
+void FaceDebugLayer::updateFits(std::span<const vision::FaceFit> fits) noexcept
+{
+    gl_->fitCount = static_cast<int>(std::min<std::size_t>(fits.size(), kMaxFaces));
+    std::copy_n(fits.begin(), gl_->fitCount, gl_->fits.begin());
+}
+
 void FaceDebugLayer::draw(const LayerContext& context) noexcept
 {
-    if (!visible_ || gl_->count == 0)
+    if (!visible_ || (gl_->count == 0 && gl_->fitCount == 0))
         return;
     const float sx = 0.5f * static_cast<float>(context.viewportWidth);
     const float sy = 0.5f * static_cast<float>(context.viewportHeight);
@@ -115,13 +139,14 @@ void FaceDebugLayer::draw(const LayerContext& context) noexcept
         }
         vertices += 6;
     };
+    float* buffer = gl_->vertices.data();
     auto flush = [&](const float* color) {
         if (vertices == 0)
             return;
         glUniform4fv(gl_->color, 1, color);
-        glVertexAttribPointer(0, 2, GL_FLOAT, GL_FALSE, 0, gl_->vertices.data());
+        glVertexAttribPointer(0, 2, GL_FLOAT, GL_FALSE, 0, buffer);
         glDrawArrays(GL_TRIANGLES, 0, vertices);
-        out = gl_->vertices.data();
+        out = buffer;
         vertices = 0;
     };
 
@@ -147,6 +172,20 @@ void FaceDebugLayer::draw(const LayerContext& context) noexcept
         for (int p = 0; p < f.pointCount; ++p)
             segment(f.points[p], f.points[p], 1.5f * half);
         flush(kPoint);
+    }
+    // §5.3: the fitted meshes, thin, over the faces.
+    if (!gl_->meshEdges.empty()) {
+        buffer = out = gl_->meshVertices.data();
+        for (int i = 0; i < gl_->fitCount; ++i) {
+            const vision::FaceFit& fit = gl_->fits[static_cast<std::size_t>(i)];
+            if (!fit.fitted)
+                continue;
+            for (const auto& [a, b] : gl_->meshEdges)
+                if (a < fit.vertexCount && b < fit.vertexCount)
+                    segment(fit.vertices[static_cast<std::size_t>(a)],
+                            fit.vertices[static_cast<std::size_t>(b)], 0.5f * half);
+            flush(fit.ok() ? kMeshFitted : kMeshFailed);
+        }
     }
     glDisableVertexAttribArray(0);
 }

@@ -283,6 +283,41 @@ TEST(MirrorEndToEnd, AtASceneCutTheOldFacesGoAndTheNewOneIsShownAtOnce)
     EXPECT_NE(r.output.find("faces: 1 shown (was 0)", dropped), std::string::npos) << r.output;
 }
 
+TEST(MirrorEndToEnd, TheAamModelIsFittedToTheFaceOrReportedMissing)
+{
+    // §5.3: with the demo model, it is loaded and `selftest` says so; with a model that is not
+    // there, one warning, selftest FAILs it, and the mirror runs on with its faces.
+    const std::string model = testing_support::sourceDir() + "/out/aam/imm-demo.aam";
+    const std::string frames =
+        " --source file:" + testing_support::sharedData("fgnet_talking_face/images") +
+        " --frames 40 --set 'source.rate=\"max\"' --set source.loop=false";
+    if (std::filesystem::exists(model)) {
+        const std::string out = testing_support::freshOutputDir("e2e_aam_out");
+        const RunResult r = runMirror("--display headless:" + out + frames +
+                                          " --set display.debug=true --set 'faces.model=\"" +
+                                          model + "\"'",
+                                      "selftest");
+        ASSERT_EQ(r.exitCode, 0) << r.output;
+        EXPECT_NE(r.output.find("faces: model " + model + " (84 vertices"), std::string::npos)
+            << r.output;
+        EXPECT_NE(r.output.find("PASS aam: model " + model + " loaded"), std::string::npos)
+            << r.output;
+        // (What `faces` prints of a fit: the frame-loop allocation test, where it types it later.)
+    }
+    const std::string out = testing_support::freshOutputDir("e2e_aam_missing_out");
+    const RunResult r = runMirror("--display headless:" + out + frames +
+                                      " --set 'faces.model=\"/nonexistent/face.aam\"'",
+                                  "selftest");
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_NE(r.output.find("faces: model /nonexistent/face.aam: "), std::string::npos)
+        << r.output;
+    EXPECT_NE(r.output.find("FAIL aam: model /nonexistent/face.aam not loaded"),
+              std::string::npos)
+        << r.output;
+    EXPECT_NE(r.output.find("PASS faces: cascade"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("faces: 1 shown (was 0)"), std::string::npos) << r.output;
+}
+
 TEST(MirrorEndToEnd, RebootMirrorRebuildsThePipelineAndKeepsRunning)
 {
     const std::string out = testing_support::freshOutputDir("e2e_reboot_out");

@@ -180,6 +180,50 @@ TEST_F(FaceOverlayTest, TheFarTempleArmHidesBehindTheHeadWhenItTurns)
         otherWay.red, otherWay.green, otherWayNoHead.red, otherWayNoHead.green);
 }
 
+TEST_F(FaceOverlayTest, AFittedHeadsFullPoseTurnsTheGlassesAndTheHeadHidesTheFarArm)
+{
+    // §5.3: the pose of an AAM fit (headPoseFromFit), as the firmware gives it for a face whose
+    // fit holds. Untwisted and unturned it is the box's pose; turned by the fit's yaw (positive:
+    // the nose to image right, the person's right, red, side towards the camera), the far arm
+    // hides behind the head proxy posed with it.
+    Renderer renderer({kWidth, kHeight}, PixelFormat::RGB24, RendererOptions{false, {}, false});
+    FaceOverlayLayer layer(testCatalogue);
+    renderer.addLayer(&layer);
+    const vision::ImageBuffer video = greyFrame(kWidth, kHeight);
+    const vision::TrackedFace face = centredFace();
+    const vision::CameraModel camera{{kWidth, kHeight}, layer.options().verticalFovDegrees};
+    auto render = [&](const render::FaceDrawing& drawing) {
+        EXPECT_TRUE(layer.setFaces({&drawing, 1}));
+        EXPECT_TRUE(renderer.draw(video.view(), kWidth, kHeight, nullptr)) << renderer.lastError();
+        gl.read();
+        return countTemplePixels(gl);
+    };
+    vision::FaceFit fit;
+    fit.faceSize = face.size;
+    fit.eyeMidpoint = {face.centre.x, face.centre.y - vision::kEyeMidpointAboveBoxCentre * face.size};
+    auto fitted = [&](float yaw, float pitch) {
+        render::FaceDrawing d = wearing(face, testCatalogue.find("test_glasses"));
+        fit.yawDegrees = yaw;
+        fit.pitchDegrees = pitch;
+        d.hasPose = true;
+        d.pose = vision::headPoseFromFit(fit, camera, layer.options().head.faceWidthMetres);
+        return d;
+    };
+    const Counts box = render(wearing(face, testCatalogue.find("test_glasses")));
+    const Counts frontal = render(fitted(0.f, 0.f));
+    EXPECT_EQ(frontal.red, box.red) << "an unturned fit draws as the box";
+    EXPECT_EQ(frontal.green, box.green);
+    const Counts right = render(fitted(60.f, 0.f));
+    EXPECT_GT(right.red, 3 * frontal.red) << "the near (red) arm seen from the side";
+    EXPECT_LE(right.green, 2) << "the far (green) arm behind the head";
+    const Counts left = render(fitted(-60.f, 0.f));
+    EXPECT_GT(left.green, 3 * frontal.green);
+    EXPECT_LE(left.red, 2);
+    std::printf("temple pixels red/green by the fitted pose: frontal %d/%d, yaw 60 %d/%d, "
+                "yaw -60 %d/%d\n",
+                frontal.red, frontal.green, right.red, right.green, left.red, left.green);
+}
+
 TEST_F(FaceOverlayTest, MirroredIsTheUnmirroredPictureFlipped)
 {
     const vision::ImageBuffer video = greyFrame(kWidth, kHeight);

@@ -59,7 +59,7 @@ public:
 };
 
 struct HeadFitRunnerOptions {
-    std::string fitter = "baseline";         ///< "baseline" (until vision's fit lands)
+    std::string fitter = "baseline";         ///< "aam" (vision's fit, needs model) or "baseline"
     std::string dataDir = "../shared/data";  ///< CANDIDE-3 and the baseline's calibration photos
     std::string model;                       ///< the .aam model file a real fit loads
 };

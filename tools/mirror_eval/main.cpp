@@ -185,7 +185,9 @@ int main(int argc, char** argv)
     aamCmd->add_flag("--all-persons", aam.allPersons,
                      "--imm: every person, also those the demo model was built from "
                      "(person-specific)");
-    aamCmd->add_option("--fitter", aam.fitter, "our side: baseline (until vision's fit lands)")
+    aamCmd->add_option("--fitter", aam.fitter,
+                       "our side: aam (vision's fit as the firmware runs it; needs --model) or "
+                       "baseline (the mean shape placed by the box)")
         ->capture_default_str();
     aamCmd->add_option("--model", aam.model, "the .aam model file a real fit loads");
     aam.dataDir = tool_data::defaultDir();

@@ -2,6 +2,7 @@
 // is printed.
 #include "mean_shape_baseline.hpp"
 
+#include "aam_fit_runner.hpp"
 #include "annotation_files.hpp"
 #include "annotation_schemes.hpp"
 #include "candide_fit.hpp"
@@ -70,12 +71,14 @@ HeadFit MeanShapeBaseline::fit(const cv::Mat&, const FaceBoxPx& box)
 std::unique_ptr<HeadFitRunner> makeHeadFitRunner(const HeadFitRunnerOptions& options,
                                                  DlibPeer& boxes)
 {
-    // vision's AAM fit goes here when it lands: "aam" -> a runner around it (head_fit_runner.hpp).
     if (options.fitter == "baseline")
         return std::make_unique<MeanShapeBaseline>(options.dataDir, boxes);
-    throw std::invalid_argument("--fitter " + options.fitter +
-                                ": unknown (this build has: baseline; vision's AAM fit is not "
-                                "there yet)");
+    if (options.fitter == "aam") {
+        if (options.model.empty())
+            throw std::invalid_argument("--fitter aam needs --model FILE");
+        return std::make_unique<AamFitRunner>(options.model, options.dataDir, boxes);
+    }
+    throw std::invalid_argument("--fitter " + options.fitter + ": unknown (baseline or aam)");
 }
 
 }  // namespace mirror_eval

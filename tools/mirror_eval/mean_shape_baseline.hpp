@@ -23,6 +23,8 @@ public:
     HeadFit fit(const cv::Mat& grey, const FaceBoxPx& box) override;
 
     int calibrationPhotos() const noexcept { return photos_; }
+    /// Per vertex, its mean offset from the box centre in box widths.
+    const std::vector<Eigen::Vector2d>& offsets() const noexcept { return offsets_; }
 
 private:
     vision::CandideMesh mesh_;

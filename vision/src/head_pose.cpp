@@ -34,4 +34,32 @@ HeadPose headPoseFromFace(const TrackedFace& face, const CameraModel& camera,
     return pose;
 }
 
+Eigen::Matrix3f headRotationFromAngles(float yawDegrees, float pitchDegrees,
+                                       float rollDegrees) noexcept
+{
+    const float yaw = toRadians(yawDegrees), pitch = toRadians(pitchDegrees);
+    const float roll = toRadians(rollDegrees);
+    Eigen::Matrix3f rz, rx, ry;
+    rz << std::cos(roll), -std::sin(roll), 0.f, std::sin(roll), std::cos(roll), 0.f, 0.f, 0.f, 1.f;
+    rx << 1.f, 0.f, 0.f, 0.f, std::cos(pitch), -std::sin(pitch), 0.f, std::sin(pitch),
+        std::cos(pitch);
+    ry << std::cos(yaw), 0.f, std::sin(yaw), 0.f, 1.f, 0.f, -std::sin(yaw), 0.f, std::cos(yaw);
+    const Eigen::Matrix3f d = Eigen::Vector3f(1.f, -1.f, -1.f).asDiagonal();
+    return rz * d * rx * ry * d;
+}
+
+HeadPose headPoseFromFit(const FaceFit& fit, const CameraModel& camera,
+                         float faceWidthMetres) noexcept
+{
+    HeadPose pose;
+    pose.rotation = headRotationFromAngles(fit.yawDegrees, fit.pitchDegrees, fit.rollDegrees);
+    const float f = camera.focalPixels();
+    const float depth = fit.faceSize > 0.f ? f * faceWidthMetres / fit.faceSize : 1.f;
+    const float cx = 0.5f * static_cast<float>(camera.imageSize.width);
+    const float cy = 0.5f * static_cast<float>(camera.imageSize.height);
+    pose.translation = Eigen::Vector3f((fit.eyeMidpoint.x - cx) * depth / f,
+                                       (fit.eyeMidpoint.y - cy) * depth / f, depth);
+    return pose;
+}
+
 }  // namespace vision

@@ -90,6 +90,7 @@ struct VisionConfig {
 struct FacesConfig {
     bool enabled = true;
     std::string cascade = "/usr/share/opencv4/haarcascades/haarcascade_frontalface_default.xml";
+    std::string model;  ///< the AAM model file (5.3); "" = no 3D head, the 2D pose only
     int downscale = 2;  ///< motion and detection run at the frame size / downscale
     enum class Tracking { None, Translation, Similarity, Affine } tracking = Tracking::Similarity;
     bool motionMask = true;

@@ -1,7 +1,8 @@
 #pragma once
 // HeadPose: where a head is and how it is turned, in the camera's 3D frame, for placing 3D
-// overlays (hats, glasses) on a tracked face (§6). Until a full 3D head pose is tracked, the
-// pose comes from the face box alone (headPoseFromFace): position, scale and roll, yaw and pitch 0.
+// overlays (hats, glasses) on a tracked face (§6). With an AAM fit that holds (§5.3), the full
+// 6-DoF pose comes from it (headPoseFromFit); otherwise from the face box alone
+// (headPoseFromFace): position, scale and roll, yaw and pitch 0.
 //
 // Frames (all right-handed, metres):
 //  - camera frame (as OpenCV): origin at the camera's centre of projection, x towards image right,
@@ -13,6 +14,7 @@
 //    from the camera).
 // A head point p maps to the camera frame as rotation * p + translation.
 
+#include "vision/face_fit.hpp"
 #include "vision/face_tracker.hpp"
 #include "vision/image.hpp"
 
@@ -47,5 +49,23 @@ inline constexpr float kEyeMidpointAboveBoxCentre = 0.12f;
 /// (size <= 0) is placed at a depth of 1 m.
 HeadPose headPoseFromFace(const TrackedFace& face, const CameraModel& camera,
                           float faceWidthMetres = 0.15f) noexcept;
+
+/// The rotation of a head turned by yaw, pitch and roll as the AAM fit reports them (AamHead:
+/// image = t + scale * Roll(roll) * Flip * Rx(pitch) * Ry(yaw) * g, g in CANDIDE's frame: x to the
+/// person's left, y up, z towards the camera): the head frame is CANDIDE's turned half-way about
+/// x (D = diag(1, -1, -1)), so the rotation is Rz(roll) * D * Rx(pitch) * Ry(yaw) * D. Zero angles
+/// give the identity; positive yaw turns the nose towards image right, positive pitch turns it
+/// down, positive roll is clockwise on screen as in headPoseFromFace.
+Eigen::Matrix3f headRotationFromAngles(float yawDegrees, float pitchDegrees,
+                                       float rollDegrees) noexcept;
+
+/// The full pose of a fitted head (the fit in `camera.imageSize` coordinates): the rotation of
+/// its yaw, pitch and roll (headRotationFromAngles), the eye midpoint back-projected from the
+/// fitted eye corners' midpoint at the depth of headPoseFromFace for a box of side
+/// fit.faceSize (the tracker box the fitted mesh corresponds to), so a face switching between the
+/// fit and the 2D pose stays where it is. Meaningful only when fit.ok(); a fit without a size is
+/// placed at 1 m.
+HeadPose headPoseFromFit(const FaceFit& fit, const CameraModel& camera,
+                         float faceWidthMetres = 0.15f) noexcept;
 
 }  // namespace vision

@@ -5,6 +5,7 @@
 
 #include "vision/card_tracker.hpp"
 #include "vision/chromaticity.hpp"
+#include "vision/face_fit.hpp"
 #include "vision/face_tracker.hpp"
 #include "vision/image.hpp"
 
@@ -28,6 +29,9 @@ struct FrameState {
     /// Tracked faces (§3) in frame coordinates when the face stage ran (shown() ones are the
     /// confirmed faces), empty otherwise. Valid until the next frame.
     std::span<const TrackedFace> faces{};
+    /// The AAM fits (§5.3) of `faces` in frame coordinates, one per face in the same order, when
+    /// the AAM stage ran (a model is loaded), empty otherwise. Valid until the next frame.
+    std::span<const FaceFit> fits{};
 };
 
 class Stage {

@@ -1,0 +1,93 @@
+#pragma once
+// TrackedFaceFitter: the AAM fit (§5.3) run on every shown face of the tracker. Each track id has
+// a fixed slot holding its AamFaceState: a new track (or one whose last fit failed) starts the
+// fit from the tracker's box and roll (AamFitter::start, placed as AamBoxPlacement says); a
+// track fitted well last frame follows the tracker's motion since then (AamFitter::follow) and
+// fits from there. A fit the fitter rejects, or whose mesh left the tracker's box, is reported not
+// ok (the face keeps the 2D pose) and the track starts afresh from its box next frame: a wrong fit
+// is never carried on. Every buffer is allocated by the constructor; process() never allocates
+// and never throws.
+
+#include "vision/aam_fitter.hpp"
+#include "vision/aam_model.hpp"
+#include "vision/face_fit.hpp"
+#include "vision/face_tracker.hpp"
+
+#include <array>
+#include <span>
+#include <vector>
+
+namespace vision {
+
+/// Where a face's mesh starts in the tracker's face box (side s, rolled by the face's roll): the
+/// mean shape's bounding box is widthOverBox * s wide and its centre lies downOverBox * s below
+/// the box centre along the face's down axis. Measured on real faces (the Viola-Jones boxes of
+/// the face tracker's detector and cascade, on the image halved as the motion stage halves it,
+/// against the box of each annotation's CANDIDE fit), tools/aam/tests/aam_start_box_real_test.cpp:
+///   IMM, 80 frontal images (types 1, 2):      width 0.714 (sd 0.030), down 0.174 (sd 0.019)
+///   FGNet franck, every 10th of frames 0-999: width 0.755 (sd 0.022), down 0.177 (sd 0.014)
+/// The defaults are the two sets' means. Sideways the mesh sits at the box centre (IMM +0.003,
+/// FGNet -0.019 of the side to the right): no offset is kept.
+struct AamBoxPlacement {
+    float widthOverBox = 0.735f;
+    float downOverBox = 0.175f;
+};
+
+struct TrackedFaceFitterOptions {
+    AamFitterOptions fit{};
+    AamBoxPlacement placement{};
+    /// Beyond the fitter's own verification: the fitted mesh's box must stay within this fraction
+    /// of the tracker's box side of where the tracker says it starts, and its width within these
+    /// ratios of the start's width. The tracker's box is right about where the face is (it is
+    /// verified every frame): a mesh that wandered off it fitted something else.
+    float maxCentreShift = 0.3f;
+    float minWidthRatio = 0.7f;
+    float maxWidthRatio = 1.4f;
+};
+
+class TrackedFaceFitter {
+public:
+    static constexpr int kMaxFaces = 16;
+
+    /// Builds the fitter's tables from `model` (not kept). Throws std::invalid_argument (one
+    /// line) for a model the fitter cannot use.
+    explicit TrackedFaceFitter(const AamModel& model, const TrackedFaceFitterOptions& options = {});
+
+    /// Fits every shown face of `faces` (coordinates of `grey`, a Gray8 image) and forgets the
+    /// tracks that are gone. fits() then has one entry per face of `faces` (at most kMaxFaces),
+    /// in the same order; faces not shown are not fitted (FaceFit::fitted false).
+    void process(ConstImageView grey, std::span<const TrackedFace> faces) noexcept;
+    std::span<const FaceFit> fits() const noexcept { return {fits_.data(), count_}; }
+
+    /// Where the fit of `face` starts (AamBoxPlacement applied to its box and roll).
+    AamStart startFor(const TrackedFace& face) const noexcept;
+    /// Forgets every track (a new camera, a rebuilt pipeline).
+    void reset() noexcept;
+
+    int vertexCount() const noexcept { return fitter_.vertexCount(); }
+    /// The fitted mesh's triangles (indices into FaceFit::vertices), for drawing it.
+    std::span<const std::array<int, 3>> triangles() const noexcept { return triangles_; }
+    const TrackedFaceFitterOptions& options() const noexcept { return options_; }
+
+private:
+    struct Slot {
+        int faceId = 0;  ///< 0: free
+        bool seen = false;
+        bool tracking = false;  ///< the last fit was ok: follow from it
+        AamStart last{};        ///< the start box of the last frame (follow's `from`)
+        AamFaceState state{};
+    };
+    Slot* slotFor(int faceId) noexcept;
+    void fitFace(ConstImageView grey, const TrackedFace& face, Slot& slot, FaceFit& out) noexcept;
+
+    AamFitter fitter_;
+    TrackedFaceFitterOptions options_;
+    std::vector<std::array<int, 3>> triangles_;
+    std::array<int, 4> eyeCorners_{};  ///< mesh indices of CANDIDE's eye corners 20, 23, 53, 56
+    float meshWidthUnits_ = 1.f;       ///< CANDIDE units across the base mesh (x extent)
+    std::array<Slot, kMaxFaces> slots_{};
+    std::array<FaceFit, kMaxFaces> fits_{};
+    std::size_t count_ = 0;
+};
+
+}  // namespace vision

@@ -1,0 +1,159 @@
+// TrackedFaceFitter (tracked_face_fitter.hpp): per-track AAM fits, started from the tracker's box
+// and carried along by the tracker's motion while they hold (§5.3.3: a new face is fitted from the
+// tracker's position, scale and roll; a tracked one from its last fit).
+#include "vision/tracked_face_fitter.hpp"
+
+#include "vision/candide_reduction.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace vision {
+
+namespace {
+
+/// The box of a fitted mesh: centre and width, as AamStart measures them.
+AamStart meshBox(const AamFitResult& fit) noexcept
+{
+    float x0 = 1e30f, y0 = 1e30f, x1 = -1e30f, y1 = -1e30f;
+    for (int v = 0; v < fit.vertexCount; ++v) {
+        const Point2f p = fit.vertices[static_cast<std::size_t>(v)];
+        x0 = std::min(x0, p.x);
+        x1 = std::max(x1, p.x);
+        y0 = std::min(y0, p.y);
+        y1 = std::max(y1, p.y);
+    }
+    return {{0.5f * (x0 + x1), 0.5f * (y0 + y1)}, x1 - x0, 0.f};
+}
+
+}  // namespace
+
+TrackedFaceFitter::TrackedFaceFitter(const AamModel& model, const TrackedFaceFitterOptions& options)
+    : fitter_(model, options.fit), options_(options), triangles_(model.mesh.triangles)
+{
+    const std::array<int, 4> corners{
+        kCandideEyeOpenings[0].outerCorner, kCandideEyeOpenings[0].innerCorner,
+        kCandideEyeOpenings[1].outerCorner, kCandideEyeOpenings[1].innerCorner};
+    for (std::size_t i = 0; i < corners.size(); ++i)
+        eyeCorners_[i] = model.mesh.indexOfCandideVertex(corners[i]);
+    float x0 = 1e30f, x1 = -1e30f;
+    for (const auto& v : model.mesh.vertices) {
+        x0 = std::min(x0, v.x());
+        x1 = std::max(x1, v.x());
+    }
+    meshWidthUnits_ = x1 > x0 ? x1 - x0 : 1.f;
+}
+
+AamStart TrackedFaceFitter::startFor(const TrackedFace& face) const noexcept
+{
+    const float roll = face.rollDegrees * kRadiansPerDegree;
+    const float down = options_.placement.downOverBox * face.size;
+    // The face's down axis on screen (y down, roll clockwise): (-sin, cos).
+    AamStart s;
+    s.centre = {face.centre.x - down * std::sin(roll), face.centre.y + down * std::cos(roll)};
+    s.width = options_.placement.widthOverBox * face.size;
+    s.rollDegrees = face.rollDegrees;
+    return s;
+}
+
+void TrackedFaceFitter::reset() noexcept
+{
+    slots_.fill(Slot{});
+    count_ = 0;
+}
+
+TrackedFaceFitter::Slot* TrackedFaceFitter::slotFor(int faceId) noexcept
+{
+    Slot* free = nullptr;
+    for (Slot& s : slots_) {
+        if (s.faceId == faceId)
+            return &s;
+        if (s.faceId == 0 && free == nullptr)
+            free = &s;
+    }
+    if (free != nullptr) {
+        *free = Slot{};
+        free->faceId = faceId;
+    }
+    return free;
+}
+
+void TrackedFaceFitter::process(ConstImageView grey, std::span<const TrackedFace> faces) noexcept
+{
+    for (Slot& s : slots_)
+        s.seen = false;
+    count_ = std::min(faces.size(), fits_.size());
+    for (std::size_t i = 0; i < count_; ++i) {
+        const TrackedFace& face = faces[i];
+        FaceFit& out = fits_[i];
+        out = FaceFit{};
+        out.faceId = face.id;
+        Slot* slot = slotFor(face.id);
+        if (slot == nullptr)
+            continue;
+        slot->seen = true;
+        if (!face.shown() || face.size <= 0.f) {
+            slot->tracking = false;  // not shown: fitted afresh once it is
+            continue;
+        }
+        fitFace(grey, face, *slot, out);
+    }
+    for (Slot& s : slots_)
+        if (!s.seen)
+            s.faceId = 0;  // the track is gone
+}
+
+void TrackedFaceFitter::fitFace(ConstImageView grey, const TrackedFace& face, Slot& slot,
+                                FaceFit& out) noexcept
+{
+    const AamStart box = startFor(face);
+    if (slot.tracking) {
+        fitter_.follow(slot.state, slot.last, box);
+    } else {
+        fitter_.start(slot.state, box);
+        out.started = true;
+    }
+    slot.last = box;
+    const AamFitResult fit = fitter_.fit(grey, slot.state);
+
+    out.fitted = true;
+    out.outcome = fit.outcome;
+    out.yawDegrees = fit.yawDegrees;
+    out.pitchDegrees = fit.pitchDegrees;
+    out.rollDegrees = fit.rollDegrees;
+    out.translation = fit.translation;
+    out.scale = fit.scale;
+    out.animation = fit.animation;
+    out.fitError = fit.fitError;
+    out.iterations = fit.iterations;
+    out.vertexCount = std::min(fit.vertexCount, kAamMaxVertices);
+    std::copy_n(fit.vertices.begin(), out.vertexCount, out.vertices.begin());
+    Point2f eyes{};
+    int corners = 0;
+    for (int v : eyeCorners_) {
+        if (v < 0 || v >= out.vertexCount)
+            continue;
+        eyes.x += out.vertices[static_cast<std::size_t>(v)].x;
+        eyes.y += out.vertices[static_cast<std::size_t>(v)].y;
+        ++corners;
+    }
+    out.eyeMidpoint = corners > 0 ? Point2f{eyes.x / static_cast<float>(corners),
+                                            eyes.y / static_cast<float>(corners)}
+                                  : fit.translation;
+    out.faceSize = fit.scale * meshWidthUnits_ / options_.placement.widthOverBox;
+
+    // Where the mesh went against where the tracker says the face is.
+    const AamStart mesh = meshBox(fit);
+    const float dx = mesh.centre.x - box.centre.x, dy = mesh.centre.y - box.centre.y;
+    const float shift = std::sqrt(dx * dx + dy * dy);
+    // A turned head's mesh is narrower than the frontal start: compare the frontal width.
+    const float width = fit.scale * meshWidthUnits_;
+    out.plausible = std::isfinite(shift) && std::isfinite(width) &&
+                    shift <= options_.maxCentreShift * face.size &&
+                    width >= options_.minWidthRatio * box.width &&
+                    width <= options_.maxWidthRatio * box.width;
+    // A failed fit is not carried on: the next frame starts again from the tracker's box.
+    slot.tracking = out.ok();
+}
+
+}  // namespace vision
