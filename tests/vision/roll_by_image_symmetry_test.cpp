@@ -252,6 +252,15 @@ TEST(RollByImageSymmetry, WholeAxisPairsGiveTheReferenceBits)
             const float fast = symmetry_detail::pairAsymmetryWholeAxis(planes, xFirst, xEnd, a2);
             EXPECT_EQ(std::bit_cast<std::uint32_t>(reference), std::bit_cast<std::uint32_t>(fast))
                 << "trial " << trial << " a2 " << a2;
+            // Uniform weights left out (null) on a fractional axis: the same bits too.
+            symmetry_detail::PairPlanes unweighted = planes;
+            unweighted.weight = nullptr;
+            const float half = static_cast<float>(a2) + 0.37f;
+            EXPECT_EQ(std::bit_cast<std::uint32_t>(
+                          symmetry_detail::pairAsymmetry(planes, xFirst, xEnd - 1, half)),
+                      std::bit_cast<std::uint32_t>(
+                          symmetry_detail::pairAsymmetry(unweighted, xFirst, xEnd - 1, half)))
+                << "trial " << trial << " a2 " << half;
         }
     }
 }

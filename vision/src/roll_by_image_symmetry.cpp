@@ -213,8 +213,9 @@ float RollByImageSymmetry::asymmetryAbout(float a2) const noexcept
     const int xEnd = static_cast<int>(std::ceil(0.5f * a2));
     if (xFirst >= xEnd)
         return 1.f;
-    const symmetry_detail::PairPlanes planes{a_.data(), b_.data(), weight_.data(), n, y0, y1, hi,
-                                             gradient};
+    const symmetry_detail::PairPlanes planes{a_.data(), b_.data(),
+                                             uniformWeights_ ? nullptr : weight_.data(),
+                                             n, y0, y1, hi, gradient};
     // The coarse scan's half-pixel axes: the same sum without the interpolation (a flat patch
     // compares nothing and scores 1 either way).
     if (gradient && uniformWeights_ && a2 == std::floor(a2))

@@ -12,7 +12,8 @@
 namespace vision::symmetry_detail {
 
 /// The prepared planes (n x n, row-major) and the compared rows [y0, y1); partners read up to
-/// column `hi`. `weight[d]`: a pair's weight by its distance d = |x - x'|.
+/// column `hi`. `weight[d]`: a pair's weight by its distance d = |x - x'|; null: every weight
+/// is 1 (1 x s is s: the same bits without looking it up).
 struct PairPlanes {
     const float* a;
     const float* b;  ///< the vertical gradients (gradient feature); unused otherwise
@@ -37,7 +38,9 @@ inline float pairAsymmetry(const PairPlanes& p, int xFirst, int xEnd, float a2) 
             const float f = m - static_cast<float>(m0);
             const float am = a[m0] + f * (a[m0 + 1] - a[m0]);
             const float w =
-                p.weight[static_cast<std::size_t>(std::lround(m - static_cast<float>(x)))];
+                p.weight != nullptr
+                    ? p.weight[static_cast<std::size_t>(std::lround(m - static_cast<float>(x)))]
+                    : 1.f;
             if (p.gradient) {
                 const float bm = b[m0] + f * (b[m0 + 1] - b[m0]);
                 cost += w * (std::fabs(a[x] + am) + std::fabs(b[x] - bm));
