@@ -16,6 +16,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -213,6 +214,48 @@ TEST(FaceDetector, IntegralTablesMatchBruteForce)
             }
             ASSERT_EQ(t.sum()[y * stride + x], s) << x << "," << y;
             ASSERT_EQ(t.squaredSum()[y * stride + x], static_cast<std::uint32_t>(q));
+        }
+    }
+}
+
+TEST(FaceDetector, IntegralTablesOfABandGiveTheWholeTablesWindowSums)
+{
+    // The scan prepares only the rows of the windows it evaluates, counting from the band's
+    // first row: every rectangle within the band sums as in the whole tables (plain, squared
+    // and column-split), for a copy and a shrunk scale.
+    const Gray g = randomImage(61, 47, 11);
+    for (const Size scaled : {Size{61, 47}, Size{50, 39}}) {
+        ScaledIntegrals whole({64, 48}, true);
+        ScaledIntegrals band({64, 48}, true);
+        whole.prepare(g.view(), scaled.width, scaled.height, true);
+        band.begin(g.view(), scaled.width, scaled.height, true);
+        band.prepareRows(9, 20);
+        band.prepareRows(11, 30);  // extends the band
+        const int stride = whole.stride();
+        const int half = (stride + 1) / 2;
+        const auto split = [&](const ScaledIntegrals& t, int x, int y) {
+            return t.splitSum()[y * stride + (x & 1 ? half : 0) + (x >> 1)];
+        };
+        for (int y0 = 9; y0 <= 30; y0 += 3) {
+            for (int y1 = y0; y1 <= 30; y1 += 4) {
+                for (int x0 = 0; x0 <= scaled.width; x0 += 5) {
+                    for (int x1 = x0; x1 <= scaled.width; x1 += 7) {
+                        const auto rect = [&](auto at) {
+                            return static_cast<std::uint32_t>(at(x1, y1)) -
+                                   static_cast<std::uint32_t>(at(x0, y1)) -
+                                   static_cast<std::uint32_t>(at(x1, y0)) +
+                                   static_cast<std::uint32_t>(at(x0, y0));
+                        };
+                        const auto of = [&](const ScaledIntegrals& t) {
+                            return std::array<std::uint32_t, 3>{
+                                rect([&](int x, int y) { return t.sum()[y * stride + x]; }),
+                                rect([&](int x, int y) { return t.squaredSum()[y * stride + x]; }),
+                                rect([&](int x, int y) { return split(t, x, y); })};
+                        };
+                        ASSERT_EQ(of(whole), of(band)) << x0 << "," << y0 << " " << x1 << "," << y1;
+                    }
+                }
+            }
         }
     }
 }

@@ -1,18 +1,22 @@
 // RollByImageSymmetry: a synthetic mirror-symmetric face pattern rotated on screen by known
 // angles comes back within half a degree (with the right sign, also with the box off the face's
 // axis and near the ends of the angle range; by each cue alone within a degree), no allocation per
-// estimate, flat images give no confidence, bad input and bad options.
+// estimate, flat images give no confidence, bad input and bad options; the coarse scan's
+// whole-axis pair sum gives the reference loop's bits.
 #include "vision/roll_by_image_symmetry.hpp"
 
 #include "alloc_counter.hpp"
+#include "symmetry_pairs.hpp"
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <limits>
 #include <stdexcept>
+#include <vector>
 
 using namespace vision;
 
@@ -215,4 +219,48 @@ TEST(RollByImageSymmetry, InvalidOptionsThrowOneLine)
     EXPECT_THROW(make([](auto& o) { o.rowCueBelowConfidence = std::nanf(""); }),
                  std::invalid_argument);
     EXPECT_NO_THROW(make([](auto&) {}));
+}
+
+TEST(RollByImageSymmetry, WholeAxisPairsGiveTheReferenceBits)
+{
+    // The coarse scan's shortcut (symmetry_pairs.hpp) against the reference loop: every whole
+    // axis of a 40-pixel patch, on planes of saturated gradients with zeros and both signs.
+    constexpr int n = 40;
+    std::vector<float> a(n * n), b(n * n), weight(2 * n + 32, 1.f);
+    std::uint32_t state = 12345u;
+    const auto next = [&state] {
+        state = state * 1664525u + 1013904223u;
+        const int v = static_cast<int>(state >> 24) - 128;  // -128..127, zero included
+        const float g = static_cast<float>(v) * 0.37f;
+        return g / (1.f + std::fabs(g) / 8.f);
+    };
+    for (int trial = 0; trial < 4; ++trial) {
+        std::generate(a.begin(), a.end(), next);
+        std::generate(b.begin(), b.end(), next);
+        if (trial == 3)
+            std::fill(a.begin(), a.end(), 0.f);  // half flat
+        const symmetry_detail::PairPlanes planes{a.data(), b.data(), weight.data(), n, 4, 38,
+                                                 n - 2, true};
+        for (int a2 = 20; a2 <= 58; ++a2) {
+            const int xFirst = std::max({1, static_cast<int>(std::ceil(0.5f * a2 - 13.6f)),
+                                         a2 - (n - 3)});
+            const int xEnd = (a2 + 1) / 2;
+            if (xFirst >= xEnd)
+                continue;
+            const float reference =
+                symmetry_detail::pairAsymmetry(planes, xFirst, xEnd, static_cast<float>(a2));
+            const float fast = symmetry_detail::pairAsymmetryWholeAxis(planes, xFirst, xEnd, a2);
+            EXPECT_EQ(std::bit_cast<std::uint32_t>(reference), std::bit_cast<std::uint32_t>(fast))
+                << "trial " << trial << " a2 " << a2;
+            // Uniform weights left out (null) on a fractional axis: the same bits too.
+            symmetry_detail::PairPlanes unweighted = planes;
+            unweighted.weight = nullptr;
+            const float half = static_cast<float>(a2) + 0.37f;
+            EXPECT_EQ(std::bit_cast<std::uint32_t>(
+                          symmetry_detail::pairAsymmetry(planes, xFirst, xEnd - 1, half)),
+                      std::bit_cast<std::uint32_t>(
+                          symmetry_detail::pairAsymmetry(unweighted, xFirst, xEnd - 1, half)))
+                << "trial " << trial << " a2 " << half;
+        }
+    }
 }

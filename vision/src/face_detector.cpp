@@ -171,7 +171,8 @@ struct FaceDetector::Impl {
     // The Viola-Jones scan (§3) as cv::CascadeClassifier::detectMultiScaleNoGrouping runs it, from
     // the cursor on, over `gray` (the frame of this call), evaluating at most `budget` windows
     // (skipped windows do not count). A scale is shrunk from `gray` only when one of its windows
-    // is evaluated in this call. With firstHit, stops after the first window that passes.
+    // is evaluated in this call, and only in the rows of such windows. With firstHit, stops
+    // after the first window that passes.
     Stop run(const ConstImageView& gray, const WindowFilter& filter, bool firstHit,
              long budget) noexcept
     {
@@ -197,11 +198,13 @@ struct FaceDetector::Impl {
                     continue;
                 if (windows >= budget)
                     return Stop::Budget;  // resumes at this row's first window to evaluate
-                // Step 3: the frame shrunk to this scale, and its integral tables.
+                // Step 3: the frame shrunk to this scale, and its integral tables, only in the
+                // rows of the windows evaluated.
                 if (!prepared) {
-                    tables.prepare(gray, c.dw, c.dh, cascade.rowForm() && c.step == 2);
+                    tables.begin(gray, c.dw, c.dh, cascade.rowForm() && c.step == 2);
                     prepared = true;
                 }
+                tables.prepareRows(c.y, c.y + cascade.windowHeight());
                 // Step 4: the cascade's first stages for the whole row at once.
                 const int done = cascade.rowForm() && wanted >= RowPrefilter::kMinWindows
                                      ? prefilter.run(cascade, tables, c.y, c.step, j0, j1)

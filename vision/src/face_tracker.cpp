@@ -363,6 +363,7 @@ float FaceTracker::Impl::initialRoll(Track& t, float rollHint) noexcept
 
 void FaceTracker::Impl::verifyUndetected() noexcept
 {
+    verifier.beginFrame();
     for (int i = 0; i < trackCount; ++i) {
         Track& t = tracks[static_cast<std::size_t>(i)];
         t.seen = t.detectedThisFrame;

@@ -33,6 +33,7 @@
 #include "vision/roll_by_image_symmetry.hpp"
 
 #include "golden_section.hpp"
+#include "symmetry_pairs.hpp"
 #include "vision/upright_patch.hpp"
 
 #include <algorithm>
@@ -85,6 +86,7 @@ RollByImageSymmetry::RollByImageSymmetry(const RollByImageSymmetryOptions& optio
     a_.assign(cells, 0.f);
     b_.assign(cells, 0.f);
     weight_.assign(static_cast<std::size_t>(2 * n_ + 2 * maxShift_ + 2), 1.f);
+    uniformWeights_ = !(o.axisWeightSigma > 0.f);
     if (o.axisWeightSigma > 0.f) {
         const float sigma2 = 2.f * o.axisWeightSigma * static_cast<float>(n_);  // in |x - x'| units
         for (std::size_t d = 0; d < weight_.size(); ++d) {
@@ -211,29 +213,15 @@ float RollByImageSymmetry::asymmetryAbout(float a2) const noexcept
     const int xEnd = static_cast<int>(std::ceil(0.5f * a2));
     if (xFirst >= xEnd)
         return 1.f;
-    float cost = 0.f, norm = 0.f;
-    for (int y = y0; y < y1; ++y) {
-        const float* a = &a_[static_cast<std::size_t>(y * n)];
-        const float* b = &b_[static_cast<std::size_t>(y * n)];
-        for (int x = xFirst; x < xEnd; ++x) {
-            const float m = a2 - static_cast<float>(x);
-            const int m0 = std::min(static_cast<int>(m), hi - 1);
-            const float f = m - static_cast<float>(m0);
-            const float am = a[m0] + f * (a[m0 + 1] - a[m0]);
-            const float w =
-                weight_[static_cast<std::size_t>(std::lround(m - static_cast<float>(x)))];
-            if (gradient) {
-                const float bm = b[m0] + f * (b[m0 + 1] - b[m0]);
-                cost += w * (std::fabs(a[x] + am) + std::fabs(b[x] - bm));
-                norm += w * (std::fabs(a[x]) + std::fabs(am) + std::fabs(b[x]) + std::fabs(bm));
-            } else {
-                cost += w * std::fabs(a[x] - am);
-                norm += w * (std::fabs(a[x]) + std::fabs(am));
-            }
-        }
-    }
-    // A flat patch compares nothing: as asymmetric as unrelated halves.
-    return norm > 1e-3f ? cost / norm : 1.f;
+    const symmetry_detail::PairPlanes planes{a_.data(), b_.data(),
+                                             uniformWeights_ ? nullptr : weight_.data(),
+                                             n, y0, y1, hi, gradient};
+    // The coarse scan's half-pixel axes: the same sum without the interpolation (a flat patch
+    // compares nothing and scores 1 either way).
+    if (gradient && uniformWeights_ && a2 == std::floor(a2))
+        return symmetry_detail::pairAsymmetryWholeAxis(planes, xFirst, xEnd,
+                                                       static_cast<int>(a2));
+    return symmetry_detail::pairAsymmetry(planes, xFirst, xEnd, a2);
 }
 
 float RollByImageSymmetry::rowCoherence() const noexcept

@@ -8,6 +8,7 @@
 
 #include "scaled_integrals.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 
@@ -75,75 +76,112 @@ ScaledIntegrals::ScaledIntegrals(Size maxFrameSize, bool splitTable)
 
 void ScaledIntegrals::prepare(const ConstImageView& gray, int dw, int dh, bool split) noexcept
 {
-    shrink(gray, dw, dh);
-    integrate(dw, dh);
-    if (split)
-        deinterleave(dw, dh);
+    begin(gray, dw, dh, split);
+    prepareRows(0, dh);
 }
 
-void ScaledIntegrals::shrink(const ConstImageView& gray, int dw, int dh) noexcept
+void ScaledIntegrals::begin(const ConstImageView& gray, int dw, int dh, bool split) noexcept
 {
+    gray_ = gray;
+    dw_ = dw;
+    dh_ = dh;
+    split_ = split;
+    origin_ = -1;
+    ready_ = -1;
     resizeTable(gray.width, dw, {xofs0_.data(), xofs1_.data(), xw0_.data(), xw1_.data()});
     resizeTable(gray.height, dh, {yofs0_.data(), yofs1_.data(), yw0_.data(), yw1_.data()});
-    const bool copy = dw == gray.width && dh == gray.height;
-    for (int y = 0; y < dh; ++y) {
-        std::uint8_t* out = scaled_.data() + static_cast<std::ptrdiff_t>(y) * scaledStride_;
-        if (copy) {
-            std::memcpy(out, gray.row(y), static_cast<std::size_t>(dw));
-            continue;
-        }
-        const std::uint8_t* r0 = gray.row(yofs0_[static_cast<std::size_t>(y)]);
-        const std::uint8_t* r1 = gray.row(yofs1_[static_cast<std::size_t>(y)]);
-        const std::uint32_t a = static_cast<std::uint32_t>(yw0_[static_cast<std::size_t>(y)]);
-        const std::uint32_t b = static_cast<std::uint32_t>(yw1_[static_cast<std::size_t>(y)]);
-        for (int x = 0; x < dw; ++x) {
-            const int o0 = xofs0_[static_cast<std::size_t>(x)];
-            const int o1 = xofs1_[static_cast<std::size_t>(x)];
-            const auto c0 = static_cast<std::uint32_t>(xw0_[static_cast<std::size_t>(x)]);
-            const auto c1 = static_cast<std::uint32_t>(xw1_[static_cast<std::size_t>(x)]);
-            const std::uint32_t h0 = r0[o0] * c0 + r0[o1] * c1;
-            const std::uint32_t h1 = r1[o0] * c0 + r1[o1] * c1;
-            out[x] = static_cast<std::uint8_t>((h0 * a + h1 * b + (1u << 15)) >> 16);
-        }
+}
+
+void ScaledIntegrals::prepareRows(int top, int bottom) noexcept
+{
+    // §3: the scan asks for the rows of the windows it evaluates; a masked or budgeted scan
+    // touches a band of each scale, and rows above the band are never shrunk nor summed. Table
+    // row `top` then counts as row 0 (all zero): a rectangle's sum from four corners is the same
+    // (modulo 2^32, as the tables wrap anyway).
+    bottom = std::min(bottom, dh_);
+    top = std::max(top, 0);
+    if (top > bottom)
+        return;
+    if (origin_ < 0 || top < origin_ || top > ready_) {
+        origin_ = top;
+        ready_ = top;
+        zeroRow(top);
+    }
+    for (int y = ready_; y < bottom; ++y) {
+        shrinkRow(y);
+        integrateRow(y);
+        if (split_)
+            deinterleaveRow(y + 1);
+    }
+    ready_ = std::max(ready_, bottom);
+}
+
+void ScaledIntegrals::zeroRow(int y) noexcept
+{
+    const std::ptrdiff_t at = static_cast<std::ptrdiff_t>(y) * stride_;
+    std::fill_n(sum_.data() + at, dw_ + 1, 0);
+    std::fill_n(sqsum_.data() + at, dw_ + 1, 0u);
+    if (split_)
+        deinterleaveRow(y);
+}
+
+void ScaledIntegrals::shrinkRow(int y) noexcept
+{
+    std::uint8_t* out = scaled_.data() + static_cast<std::ptrdiff_t>(y) * scaledStride_;
+    const int dw = dw_;
+    if (dw == gray_.width && dh_ == gray_.height) {
+        std::memcpy(out, gray_.row(y), static_cast<std::size_t>(dw));
+        return;
+    }
+    const std::uint8_t* r0 = gray_.row(yofs0_[static_cast<std::size_t>(y)]);
+    const std::uint8_t* r1 = gray_.row(yofs1_[static_cast<std::size_t>(y)]);
+    const std::uint32_t a = static_cast<std::uint32_t>(yw0_[static_cast<std::size_t>(y)]);
+    const std::uint32_t b = static_cast<std::uint32_t>(yw1_[static_cast<std::size_t>(y)]);
+    for (int x = 0; x < dw; ++x) {
+        const int o0 = xofs0_[static_cast<std::size_t>(x)];
+        const int o1 = xofs1_[static_cast<std::size_t>(x)];
+        const auto c0 = static_cast<std::uint32_t>(xw0_[static_cast<std::size_t>(x)]);
+        const auto c1 = static_cast<std::uint32_t>(xw1_[static_cast<std::size_t>(x)]);
+        const std::uint32_t h0 = r0[o0] * c0 + r0[o1] * c1;
+        const std::uint32_t h1 = r1[o0] * c0 + r1[o1] * c1;
+        out[x] = static_cast<std::uint8_t>((h0 * a + h1 * b + (1u << 15)) >> 16);
     }
 }
 
-void ScaledIntegrals::integrate(int dw, int dh) noexcept
+void ScaledIntegrals::integrateRow(int y) noexcept
 {
-    for (int y = 0; y < dh; ++y) {
-        const std::uint8_t* in = scaled_.data() + static_cast<std::ptrdiff_t>(y) * scaledStride_;
-        std::int32_t* s1 = sum_.data() + static_cast<std::ptrdiff_t>(y + 1) * stride_ + 1;
-        const std::int32_t* s0 = s1 - stride_;
-        std::uint32_t* q1 = sqsum_.data() + static_cast<std::ptrdiff_t>(y + 1) * stride_ + 1;
-        const std::uint32_t* q0 = q1 - stride_;
-        std::uint32_t rs = 0;
-        std::uint32_t rq = 0;
-        for (int x = 0; x < dw; ++x) {
-            const std::uint32_t v = in[x];
-            // Both tables wrap modulo 2^32 past 8.4 Mpx (like OpenCV's 32-bit ones), in unsigned
-            // arithmetic where that is defined: a window's sum taken from them stays exact.
-            rs += v;
-            rq += v * v;
-            s1[x] = static_cast<std::int32_t>(static_cast<std::uint32_t>(s0[x]) + rs);
-            q1[x] = q0[x] + rq;
-        }
+    // Scaled row y into table row y + 1.
+    const std::uint8_t* in = scaled_.data() + static_cast<std::ptrdiff_t>(y) * scaledStride_;
+    std::int32_t* s1 = sum_.data() + static_cast<std::ptrdiff_t>(y + 1) * stride_ + 1;
+    const std::int32_t* s0 = s1 - stride_;
+    std::uint32_t* q1 = sqsum_.data() + static_cast<std::ptrdiff_t>(y + 1) * stride_ + 1;
+    const std::uint32_t* q0 = q1 - stride_;
+    std::uint32_t rs = 0;
+    std::uint32_t rq = 0;
+    for (int x = 0; x < dw_; ++x) {
+        const std::uint32_t v = in[x];
+        // Both tables wrap modulo 2^32 past 8.4 Mpx (like OpenCV's 32-bit ones), in unsigned
+        // arithmetic where that is defined: a window's sum taken from them stays exact.
+        rs += v;
+        rq += v * v;
+        s1[x] = static_cast<std::int32_t>(static_cast<std::uint32_t>(s0[x]) + rs);
+        q1[x] = q0[x] + rq;
     }
 }
 
-void ScaledIntegrals::deinterleave(int dw, int dh) noexcept
+void ScaledIntegrals::deinterleaveRow(int y) noexcept
 {
+    const int dw = dw_;
     const int half = (stride_ + 1) / 2;
-    for (int y = 0; y <= dh; ++y) {
-        const std::int32_t* in = sum_.data() + static_cast<std::ptrdiff_t>(y) * stride_;
-        std::int32_t* even = sumSplit_.data() + static_cast<std::ptrdiff_t>(y) * stride_;
-        std::int32_t* odd = even + half;
-        for (int x = 0; x + 1 <= dw; x += 2) {
-            even[x >> 1] = in[x];
-            odd[x >> 1] = in[x + 1];
-        }
-        if ((dw & 1) == 0)
-            even[dw >> 1] = in[dw];
+    const std::int32_t* in = sum_.data() + static_cast<std::ptrdiff_t>(y) * stride_;
+    std::int32_t* even = sumSplit_.data() + static_cast<std::ptrdiff_t>(y) * stride_;
+    std::int32_t* odd = even + half;
+    for (int x = 0; x + 1 <= dw; x += 2) {
+        even[x >> 1] = in[x];
+        odd[x >> 1] = in[x + 1];
     }
+    if ((dw & 1) == 0)
+        even[dw >> 1] = in[dw];
 }
 
 }  // namespace vision

@@ -21,6 +21,14 @@ public:
     /// sum tables; with `split`, also the column-deinterleaved sum table.
     void prepare(const ConstImageView& gray, int dw, int dh, bool split) noexcept;
 
+    /// The same built lazily, only where windows are evaluated: begin() takes the frame and the
+    /// scale (no rows yet; `gray` must outlive the rows' preparation), prepareRows(top, bottom)
+    /// makes table rows top..bottom (clipped to dh) valid for windows lying within them. Rows
+    /// are asked for top-down; a window sum taken from them equals prepare()'s (the tables may
+    /// count from a later row than 0: the difference cancels in every rectangle's four corners).
+    void begin(const ConstImageView& gray, int dw, int dh, bool split) noexcept;
+    void prepareRows(int top, int bottom) noexcept;
+
     /// Entries per table row: maxFrameSize.width + 1.
     int stride() const noexcept { return stride_; }
     /// Sums over [0, x) x [0, y) at y * stride() + x, for 0 <= x <= dw, 0 <= y <= dh.
@@ -32,12 +40,18 @@ public:
     const std::int32_t* splitSum() const noexcept { return sumSplit_.data(); }
 
 private:
-    void shrink(const ConstImageView& gray, int dw, int dh) noexcept;
-    void integrate(int dw, int dh) noexcept;
-    void deinterleave(int dw, int dh) noexcept;
+    void shrinkRow(int y) noexcept;
+    void integrateRow(int y) noexcept;
+    void deinterleaveRow(int y) noexcept;
+    void zeroRow(int y) noexcept;
 
     int stride_ = 0;
     int scaledStride_ = 0;
+    ConstImageView gray_{};  ///< the frame being prepared (begin())
+    int dw_ = 0, dh_ = 0;
+    bool split_ = false;
+    int origin_ = -1;  ///< table row counted from (all zero); -1: no rows prepared
+    int ready_ = -1;   ///< table rows origin_..ready_ are valid
     std::vector<std::uint8_t> scaled_;
     std::vector<std::int32_t> sum_;
     std::vector<std::uint32_t> sqsum_;

@@ -102,9 +102,15 @@ bool TrackVerifier::verifyAt(const ConstImageView& gray, Track& t, float roll,
     // re-centres and re-sizes the track from it: the corners alone let its scale drift. A face
     // at the image's edge every frame: it was found by the part of it in view, which grows as
     // it comes in, while its corners keep the size it was found at.
-    const bool reanchoring =
-        options_.reanchorEvery > 0 &&
-        (t.verifiedSinceAnchor + 1 >= options_.reanchorEvery || atEdge(t.face, gray));
+    // One track's periodic re-anchoring a frame: a track due while another re-anchors is
+    // verified first-hit and re-anchors on a later frame (§3: the dissertation alternates
+    // detection and fitting between frames rather than doing all of it in one).
+    const bool edge = atEdge(t.face, gray);
+    const bool due = t.verifiedSinceAnchor + 1 >= options_.reanchorEvery &&
+                     (anchoring_ == nullptr || anchoring_ == &t);
+    const bool reanchoring = options_.reanchorEvery > 0 && (due || edge);
+    if (reanchoring && !edge)
+        anchoring_ = &t;  // its retries at other rolls re-anchor too
     if (!reanchoring) {
         Rect hit;
         const bool ok = detector_.detectFirst(patch_.view(), hit);

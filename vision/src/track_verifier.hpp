@@ -4,8 +4,10 @@
 // first-hit mode. Every few verifications it scans the patch grouped instead and re-anchors the
 // track on the face it finds (position, size, and roll from the image). Private to vision/src.
 //
-// Use: construct once with the tracker's options; verify() a track each frame it was not
-// detected.
+// Use: construct once with the tracker's options; beginFrame() once a frame, then verify() a
+// track each frame it was not detected. At most one track re-anchors in a frame (faces at the
+// image's edge aside): the others due wait a frame, so that no frame pays for every track's
+// grouped scan and roll measurement at once (tracks started together fall due together).
 #include "face_track.hpp"
 #include "vision/face_detector.hpp"
 #include "vision/face_tracker.hpp"
@@ -22,6 +24,9 @@ public:
     TrackVerifier(const HaarCascade& cascade, const FaceTrackerOptions& options,
                   RollByImageSymmetry* imageRoll);
 
+    /// A new frame: its one re-anchoring is free again.
+    void beginFrame() noexcept { anchoring_ = nullptr; }
+
     /// True when a face is at `t` in `gray` (the working image). May move `t.face` (re-anchoring,
     /// and its roll towards where the face was found). Adds the windows it evaluated to `windows`.
     bool verify(const ConstImageView& gray, Track& t, long& windows) noexcept;
@@ -36,6 +41,7 @@ private:
     FaceDetector detector_;
     ImageBuffer patch_;
     RollByImageSymmetry* imageRoll_;
+    const Track* anchoring_ = nullptr;  ///< the track (not at the edge) re-anchoring this frame
 };
 
 }  // namespace vision

@@ -102,6 +102,7 @@ private:
     ImageBuffer big_;   ///< supersampled warp
     std::vector<float> patch_, tmp_, a_, b_;  ///< patch, blur scratch, feature planes
     std::vector<float> weight_;  ///< pair weight by distance from the axis (index: |x - x'|)
+    bool uniformWeights_ = true;  ///< every weight_ is 1 (axisWeightSigma 0)
     char lastError_[96] = {};
 };
 

@@ -1,0 +1,76 @@
+#pragma once
+// The inner loop of the roll by image symmetry (METHOD.md §4; the dissertation's 5.2 future work):
+// the normalised asymmetry of a prepared patch's feature planes about a vertical mirror axis.
+// `pairAsymmetry` is the reference for any axis; `pairAsymmetryWholeAxis` is the same sum for an
+// axis on a whole number of half pixels with uniform pair weights (the coarse scan's case: most
+// of the estimate's work), without the partner's interpolation and weight, whose terms are then
+// exactly the partner's value and 1: the same bits. Private to vision/src.
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+
+namespace vision::symmetry_detail {
+
+/// The prepared planes (n x n, row-major) and the compared rows [y0, y1); partners read up to
+/// column `hi`. `weight[d]`: a pair's weight by its distance d = |x - x'|; null: every weight
+/// is 1 (1 x s is s: the same bits without looking it up).
+struct PairPlanes {
+    const float* a;
+    const float* b;  ///< the vertical gradients (gradient feature); unused otherwise
+    const float* weight;
+    int n;
+    int y0, y1;
+    int hi;
+    bool gradient;
+};
+
+/// Sum of the pairs (x, a2 - x) for xFirst <= x < xEnd over the rows; cost / norm, or 1 when the
+/// pairs compare nothing. The reference, for any a2.
+inline float pairAsymmetry(const PairPlanes& p, int xFirst, int xEnd, float a2) noexcept
+{
+    float cost = 0.f, norm = 0.f;
+    for (int y = p.y0; y < p.y1; ++y) {
+        const float* a = p.a + static_cast<std::ptrdiff_t>(y) * p.n;
+        const float* b = p.b + static_cast<std::ptrdiff_t>(y) * p.n;
+        for (int x = xFirst; x < xEnd; ++x) {
+            const float m = a2 - static_cast<float>(x);
+            const int m0 = std::min(static_cast<int>(m), p.hi - 1);
+            const float f = m - static_cast<float>(m0);
+            const float am = a[m0] + f * (a[m0 + 1] - a[m0]);
+            const float w =
+                p.weight != nullptr
+                    ? p.weight[static_cast<std::size_t>(std::lround(m - static_cast<float>(x)))]
+                    : 1.f;
+            if (p.gradient) {
+                const float bm = b[m0] + f * (b[m0 + 1] - b[m0]);
+                cost += w * (std::fabs(a[x] + am) + std::fabs(b[x] - bm));
+                norm += w * (std::fabs(a[x]) + std::fabs(am) + std::fabs(b[x]) + std::fabs(bm));
+            } else {
+                cost += w * std::fabs(a[x] - am);
+                norm += w * (std::fabs(a[x]) + std::fabs(am));
+            }
+        }
+    }
+    return norm > 1e-3f ? cost / norm : 1.f;
+}
+
+/// pairAsymmetry for a whole a2 (partners a2 - x <= hi - 1: no interpolation), every weight 1
+/// and the gradient feature. Same bits: the partner term a[m] + 0 x (a[m + 1] - a[m]) is a[m]
+/// (the planes are finite; a zero's sign is lost in the absolute values) and 1 x s is s.
+inline float pairAsymmetryWholeAxis(const PairPlanes& p, int xFirst, int xEnd, int a2) noexcept
+{
+    float cost = 0.f, norm = 0.f;
+    for (int y = p.y0; y < p.y1; ++y) {
+        const float* a = p.a + static_cast<std::ptrdiff_t>(y) * p.n;
+        const float* b = p.b + static_cast<std::ptrdiff_t>(y) * p.n;
+        for (int x = xFirst; x < xEnd; ++x) {
+            const float am = a[a2 - x];
+            const float bm = b[a2 - x];
+            cost += std::fabs(a[x] + am) + std::fabs(b[x] - bm);
+            norm += std::fabs(a[x]) + std::fabs(am) + std::fabs(b[x]) + std::fabs(bm);
+        }
+    }
+    return norm > 1e-3f ? cost / norm : 1.f;
+}
+
+}  // namespace vision::symmetry_detail
