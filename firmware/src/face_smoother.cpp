@@ -1,28 +1,19 @@
 #include "firmware/face_smoother.hpp"
 
+#include "vision/face_slots.hpp"
+
 #include <algorithm>
 
 namespace firmware {
 
 FaceSmoother::Slot* FaceSmoother::slotFor(int faceId) noexcept
 {
-    Slot* free = nullptr;
-    for (Slot& s : slots_) {
-        if (s.faceId == faceId)
-            return &s;
-        if (s.faceId == 0 && free == nullptr)
-            free = &s;
-    }
-    if (free != nullptr) {
-        *free = Slot{};
-        free->faceId = faceId;
-    }
-    return free;
+    return vision::slotForFace(slots_, faceId);
 }
 
-std::span<const vision::TrackedFace> FaceSmoother::apply(std::span<const vision::TrackedFace> faces,
-                                                         std::int64_t timeNs,
-                                                         std::span<const vision::FaceFit> fits) noexcept
+std::span<const vision::TrackedFace> FaceSmoother::apply(
+    std::span<const vision::TrackedFace> faces, std::int64_t timeNs,
+    std::span<const vision::FaceFit> fits) noexcept
 {
     // Seconds since the last frame; the first frame and clock jumps get a nominal 30 fps step.
     float dt = lastNs_ != 0 ? static_cast<float>(timeNs - lastNs_) * 1e-9f : 1.f / 30.f;

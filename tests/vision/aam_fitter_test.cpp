@@ -11,6 +11,7 @@
 #include "vision/aam_fitter.hpp"
 
 #include "aam_composition.hpp"
+#include "aam_demo_model.hpp"
 #include "aam_fit_tables.hpp"
 #include "aam_head_projection.hpp"
 #include "aam_kernels.hpp"
@@ -40,22 +41,7 @@ using aam_test::SyntheticFaceSpec;
 constexpr float kRadians = 3.14159265f / 180.f;
 constexpr int kWidth = 320, kHeight = 240;
 
-const vision::AamModel* demoModel()
-{
-    static std::unique_ptr<vision::AamModel> model = [] {
-        const std::string path = testing_support::sourceDir() + "/out/aam/imm-demo.aam";
-        if (!std::filesystem::exists(path))
-            return std::unique_ptr<vision::AamModel>();
-        vision::AamModelFile f = vision::loadAamModel(path);
-        return f.ok ? std::make_unique<vision::AamModel>(std::move(f.model))
-                    : std::unique_ptr<vision::AamModel>();
-    }();
-    return model.get();
-}
-
-#define REQUIRE_DEMO_MODEL()    \
-    if (demoModel() == nullptr) \
-    GTEST_SKIP() << "out/aam/imm-demo.aam is not built (scripts/dev model)"
+using aam_test::demoModel;
 
 /// A face of width ~140 px at the centre of the image, posed and with an expression.
 SyntheticFaceSpec posedSpec(float yawDeg, float pitchDeg, float rollDeg, std::mt19937& random)

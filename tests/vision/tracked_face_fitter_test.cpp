@@ -6,6 +6,7 @@
 // that is gone frees its slot. Skips without the demo model (scripts/dev model).
 #include "vision/tracked_face_fitter.hpp"
 
+#include "aam_demo_model.hpp"
 #include "aam_synthetic_face.hpp"
 #include "test_paths.hpp"
 #include "vision/aam_model.hpp"
@@ -24,22 +25,7 @@ using aam_test::SyntheticFaceSpec;
 constexpr float kRadians = 3.14159265f / 180.f;
 constexpr int kWidth = 320, kHeight = 240;
 
-const vision::AamModel* demoModel()
-{
-    static std::unique_ptr<vision::AamModel> model = [] {
-        const std::string path = testing_support::sourceDir() + "/out/aam/imm-demo.aam";
-        if (!std::filesystem::exists(path))
-            return std::unique_ptr<vision::AamModel>();
-        vision::AamModelFile f = vision::loadAamModel(path);
-        return f.ok ? std::make_unique<vision::AamModel>(std::move(f.model))
-                    : std::unique_ptr<vision::AamModel>();
-    }();
-    return model.get();
-}
-
-#define REQUIRE_DEMO_MODEL()    \
-    if (demoModel() == nullptr) \
-    GTEST_SKIP() << "out/aam/imm-demo.aam is not built (scripts/dev model)"
+using aam_test::demoModel;
 
 SyntheticFace posedFace(float yawDeg, float pitchDeg, float rollDeg, float shiftX = 0.f)
 {

@@ -4,6 +4,7 @@
 #include "vision/tracked_face_fitter.hpp"
 
 #include "vision/candide_reduction.hpp"
+#include "vision/face_slots.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -64,18 +65,7 @@ void TrackedFaceFitter::reset() noexcept
 
 TrackedFaceFitter::Slot* TrackedFaceFitter::slotFor(int faceId) noexcept
 {
-    Slot* free = nullptr;
-    for (Slot& s : slots_) {
-        if (s.faceId == faceId)
-            return &s;
-        if (s.faceId == 0 && free == nullptr)
-            free = &s;
-    }
-    if (free != nullptr) {
-        *free = Slot{};
-        free->faceId = faceId;
-    }
-    return free;
+    return vision::slotForFace(slots_, faceId);
 }
 
 void TrackedFaceFitter::process(ConstImageView grey, std::span<const TrackedFace> faces) noexcept
