@@ -350,8 +350,7 @@ void FrameLoop::showSourceLost(std::int64_t now) noexcept
         return;
     // The calm screen is a frame shown: `selftest` must not blame the display for the camera,
     // and a snapshot asked for meanwhile is of this screen.
-    if (renderer_->drawMessage(kCalmScreen, display_->width(),
-                               display_->height()) &&
+    if (renderer_->drawMessage(kCalmScreen, display_->width(), display_->height()) &&
         display_->present()) {
         lastPresentNs_ = monotonicNs();
         afterPresent();
