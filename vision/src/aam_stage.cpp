@@ -18,22 +18,18 @@ void AamStage::process(FrameState& state) noexcept
         fitter_.process(motion_.gray(), faces_.tracker().faces());
         // Working image -> frame coordinates, as FaceStage converts the faces.
         const float k = static_cast<float>(motion_.downscale());
-        const float shift = 0.5f * k - 0.5f;
-        const auto toFrame = [k, shift](Point2f p) {
-            return Point2f{p.x * k + shift, p.y * k + shift};
-        };
         const std::span<const FaceFit> fits = fitter_.fits();
         count_ = std::min(fits.size(), fits_.size());
         for (std::size_t i = 0; i < count_; ++i) {
             FaceFit& f = fits_[i];
             f = fits[i];
-            f.translation = toFrame(f.translation);
-            f.eyeMidpoint = toFrame(f.eyeMidpoint);
+            f.translation = motion_.toFrame(f.translation);
+            f.eyeMidpoint = motion_.toFrame(f.eyeMidpoint);
             f.scale *= k;
             f.faceSize *= k;
             for (int v = 0; v < f.vertexCount; ++v)
                 f.vertices[static_cast<std::size_t>(v)] =
-                    toFrame(f.vertices[static_cast<std::size_t>(v)]);
+                    motion_.toFrame(f.vertices[static_cast<std::size_t>(v)]);
         }
     }
     state.fits = fits();

@@ -34,19 +34,17 @@ void FaceStage::process(FrameState& state) noexcept
         sceneCut_.reset();
     }
     // Working image -> frame coordinates: the motion stage's grey image is the frame shrunk by
-    // an integer factor (pixel centres: x_frame = (x + 0.5) * k - 0.5).
+    // an integer factor.
     const float k = static_cast<float>(motion_.downscale());
-    const float shift = 0.5f * k - 0.5f;
     const std::span<const TrackedFace> faces = tracker_.faces();
     count_ = std::min(faces.size(), frameFaces_.size());
     for (std::size_t i = 0; i < count_; ++i) {
         TrackedFace f = faces[i];
-        f.centre = {f.centre.x * k + shift, f.centre.y * k + shift};
+        f.centre = motion_.toFrame(f.centre);
         f.size *= k;
         const int n = std::min(f.pointCount, kMaxPoints);
         for (int p = 0; p < n; ++p)
-            points_[i][static_cast<std::size_t>(p)] = {f.points[p].x * k + shift,
-                                                       f.points[p].y * k + shift};
+            points_[i][static_cast<std::size_t>(p)] = motion_.toFrame(f.points[p]);
         f.points = points_[i].data();
         f.pointCount = n;
         frameFaces_[i] = f;

@@ -3,6 +3,7 @@
 // MotionDetector; the foreground mask (Gray8 0/255) and its integral image are kept by the stage
 // for the face detector (masked scan) and the HUD.
 
+#include "vision/geometry.hpp"
 #include "vision/integral_image.hpp"
 #include "vision/motion_detector.hpp"
 #include "vision/stage.hpp"
@@ -37,6 +38,14 @@ public:
     int foregroundPixels() const noexcept { return foreground_; }
     /// Full-resolution pixels per mask pixel along each axis.
     int downscale() const noexcept { return downscale_; }
+    /// A point of the reduced grey frame in frame coordinates (pixel centres: x_frame =
+    /// (x + 0.5) * k - 0.5 for the integer factor k); lengths scale by downscale().
+    Point2f toFrame(Point2f p) const noexcept
+    {
+        const float k = static_cast<float>(downscale_);
+        const float shift = 0.5f * k - 0.5f;
+        return {p.x * k + shift, p.y * k + shift};
+    }
     MotionDetector& detector() noexcept { return detector_; }
 
 private:
