@@ -12,9 +12,13 @@
 //    PyramidalLucasKanade (no forward-backward check, as one OpenCV call) against
 //    cv::buildOpticalFlowPyramid + cv::calcOpticalFlowPyrLK; at 360x240 (the working resolution
 //    the tracker runs at) and at the frames' own 720x576 (as tests/peer/optical_flow_peer_test);
-//  - the whole face pipeline per camera frame: MotionStage (downscale 2) + FaceStage on the
-//    720x576 frames in order, as the firmware's defaults configure them.
+//  - the whole face pipeline per camera frame: MotionStage (downscale 2) + FaceStage + AamStage
+//    (when the demo AAM model out/aam/imm-demo.aam is built: scripts/dev model) on the 720x576
+//    frames in order, as the firmware's defaults configure them; the AAM fit timed on its own,
+//    beside dlib's 68-point shape predictor given the same faces' boxes (AamPeerTiming).
 
+#include "vision/aam_model.hpp"
+#include "vision/aam_stage.hpp"
 #include "vision/face_detector.hpp"
 #include "vision/face_stage.hpp"
 #include "vision/haar_cascade.hpp"
@@ -24,6 +28,7 @@
 #include "vision/motion_stage.hpp"
 #include "vision/optical_flow.hpp"
 
+#include <map>
 #include <memory>
 #include <opencv2/core.hpp>
 #include <opencv2/objdetect.hpp>
@@ -63,13 +68,29 @@ public:
     int flowOpenCv(int resolution);
 
     /// The face pipeline on the FGNet frames in order. restart() builds fresh stages;
-    /// load(i) decodes frame i (not to be timed); step() runs both stages on it.
+    /// load(i) decodes frame i (not to be timed); step() runs the motion and face stages on it,
+    /// stepAam() then the AAM stage (nothing without a model).
     int pipelineFrames() const { return static_cast<int>(framePaths_.size()); }
     void pipelineRestart();
     void pipelineLoad(int i);
     void pipelineStep();
+    void pipelineStepAam();
     /// Faces shown (confirmed) after the last step().
     int pipelineShownFaces() const;
+
+    /// The AAM model's path and whether it loaded (the AAM lines need it).
+    const std::string& aamModelPath() const { return aamModelPath_; }
+    bool hasAam() const { return aamModel_ != nullptr; }
+    /// The last stepAam()'s fits: faces fitted and their Gauss-Newton iterations.
+    int pipelineFitsRun() const;
+    int pipelineFitIterations() const;
+    /// The last step()'s shown faces' boxes in frame pixels, the boxes the AAM fit starts from.
+    std::vector<cv::Rect> pipelineShownBoxes() const;
+    /// Keeps pipelineShownBoxes() as frame i's (the peer is timed on them after the run).
+    void keepBoxes(int i) { keptBoxes_[i] = pipelineShownBoxes(); }
+    const std::vector<cv::Rect>& boxesAt(int i) const { return keptBoxes_.at(i); }
+    /// The last loaded frame (BGR 720x576).
+    const cv::Mat& pipelineFrame() const { return pipelineFrame_; }
 
     const std::string& imageDir() const { return imageDir_; }
 
@@ -97,6 +118,11 @@ private:
     cv::Mat pipelineFrame_;  // BGR 720x576
     std::unique_ptr<vision::MotionStage> motionStage_;
     std::unique_ptr<vision::FaceStage> faceStage_;
+    std::string aamModelPath_;
+    std::unique_ptr<vision::AamModel> aamModel_;
+    std::unique_ptr<vision::AamStage> aamStage_;
+    vision::FrameState pipelineState_;
+    std::map<int, std::vector<cv::Rect>> keptBoxes_;
     std::uint64_t pipelineSequence_ = 0;
 };
 

@@ -2,6 +2,7 @@
 
 #include "card_tracker_case.hpp"
 #include "chromaticity_cases.hpp"
+#include "dlib_peer.hpp"
 #include "face_cases.hpp"
 #include "overlay_render_case.hpp"
 
@@ -10,6 +11,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <functional>
+#include <opencv2/imgproc.hpp>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -140,6 +142,106 @@ void printRatios(ChromaticityCases& chroma, CardTrackerCase& card)
     std::printf("ratio card_tracker_ms %.3f\n", cardMs);
 }
 
+namespace {
+
+// p99: the smallest value at least 99% of the samples do not exceed.
+double percentile99(std::vector<double> v)
+{
+    std::sort(v.begin(), v.end());
+    const std::size_t n = v.size();
+    return n == 0 ? 0.0 : v[std::min(n - 1, (n * 99 + 99) / 100 - 1)];
+}
+
+// dlib's 68-point shape predictor on the faces our fit started from (every kDlibEvery-th frame
+// with fits, the frame's full-resolution grey, decoding and conversion untimed): ms per face.
+double dlibMsPerFace(FaceCases& faces, const std::vector<int>& fitFrames)
+{
+    constexpr std::size_t kDlibEvery = 5;
+    mirror_eval::DlibPeer dlib;
+    std::vector<double> perFace;
+    for (std::size_t k = 0; k < fitFrames.size(); k += kDlibEvery) {
+        faces.pipelineLoad(fitFrames[k]);
+        cv::Mat grey;
+        cv::cvtColor(faces.pipelineFrame(), grey, cv::COLOR_BGR2GRAY);
+        for (const cv::Rect& r : faces.boxesAt(fitFrames[k])) {
+            const mirror_eval::FaceBoxPx box{static_cast<double>(r.x), static_cast<double>(r.y),
+                                             static_cast<double>(r.x + r.width),
+                                             static_cast<double>(r.y + r.height)};
+            const double t0 = cpuMs();
+            const auto points = dlib.landmarks(grey, box);
+            perFace.push_back(cpuMs() - t0);
+            if (points.size() != 68)
+                throw std::runtime_error("mirror-bench: dlib's predictor gave no 68 points");
+        }
+    }
+    double mean = 0.0;
+    for (const double t : perFace)
+        mean += t / static_cast<double>(perFace.size());
+    return mean;
+}
+
+// The pipeline: every FGNet frame once, in order, decoding untimed; the motion and face stages
+// timed apart from the AAM fit, then dlib's predictor on the same faces.
+void printPipelineRatios(FaceCases& faces)
+{
+    std::vector<double> frameMs;
+    double aamMs = 0.0;
+    long fits = 0, iterations = 0;
+    std::vector<int> fitFrames;
+    faces.pipelineRestart();
+    int shownFrames = 0;
+    for (int i = 0; i < faces.pipelineFrames(); ++i) {
+        faces.pipelineLoad(i);
+        const double t0 = cpuMs();
+        faces.pipelineStep();
+        const double t1 = cpuMs();
+        faces.pipelineStepAam();
+        const double t2 = cpuMs();
+        frameMs.push_back(t2 - t0);
+        shownFrames += faces.pipelineShownFaces() > 0;
+        if (faces.pipelineFitsRun() > 0) {
+            aamMs += t2 - t1;
+            fits += faces.pipelineFitsRun();
+            iterations += faces.pipelineFitIterations();
+            fitFrames.push_back(i);
+            faces.keepBoxes(i);
+        }
+    }
+    double mean = 0.0;
+    for (const double t : frameMs)
+        mean += t / static_cast<double>(frameMs.size());
+    const double p99 = percentile99(frameMs);
+    std::vector<double> sorted = frameMs;
+    std::sort(sorted.begin(), sorted.end());
+    const std::size_t n = sorted.size();
+    std::printf(
+        "time face_pipeline_frame %.3f ms mean, %.3f ms median, %.3f ms p99, %.3f ms max"
+        "  (%zu FGNet 720x576 frames of %s, motion /2 + faces%s; a face shown in %d)\n",
+        mean, n ? sorted[n / 2] : 0.0, p99, n ? sorted.back() : 0.0, n, faces.imageDir().c_str(),
+        faces.hasAam() ? " + aam" : "", shownFrames);
+    std::printf("ratio face_pipeline_mean_ms %.3f\n", mean);
+    std::printf("ratio face_pipeline_p99_ms %.3f\n", p99);
+    if (!faces.hasAam()) {
+        std::printf("info aam: no model at %s (scripts/dev model builds it): no AAM lines\n",
+                    faces.aamModelPath().c_str());
+        return;
+    }
+    if (fits == 0)
+        throw std::runtime_error("mirror-bench: the AAM stage fitted no face on FGNet");
+    const double oursPerFace = aamMs / static_cast<double>(fits);
+    const double dlibPerFace = dlibMsPerFace(faces, fitFrames);
+    std::printf("time aam_fit_per_face %.3f ms (%ld fits in %zu frames, model %s)\n", oursPerFace,
+                fits, fitFrames.size(), faces.aamModelPath().c_str());
+    std::printf("time dlib_shape_predictor_per_face %.3f ms (same boxes, every 5th frame fitted)\n",
+                dlibPerFace);
+    std::printf("ratio aam_ms_per_face %.3f\n", oursPerFace);
+    std::printf("ratio aam_iters_per_frame %.2f\n",
+                static_cast<double>(iterations) / static_cast<double>(fits));
+    std::printf("ratio aam_vs_dlib %.2f\n", dlibPerFace / oursPerFace);
+}
+
+}  // namespace
+
 void printFaceRatios(FaceCases& faces)
 {
     // Pairs: ours then the peer, per cascade, then motion, then flow.
@@ -178,31 +280,6 @@ void printFaceRatios(FaceCases& faces)
                     FaceCases::kFlowPoints);
     }
 
-    // The pipeline: every FGNet frame once, in order, decoding untimed.
-    std::vector<double> frameMs;
-    faces.pipelineRestart();
-    int shownFrames = 0;
-    for (int i = 0; i < faces.pipelineFrames(); ++i) {
-        faces.pipelineLoad(i);
-        const double t0 = cpuMs();
-        faces.pipelineStep();
-        frameMs.push_back(cpuMs() - t0);
-        shownFrames += faces.pipelineShownFaces() > 0;
-    }
-    double mean = 0.0;
-    for (const double t : frameMs)
-        mean += t / static_cast<double>(frameMs.size());
-    std::vector<double> sorted = frameMs;
-    std::sort(sorted.begin(), sorted.end());
-    // p99: the smallest time at least 99% of the frames do not exceed.
-    const std::size_t n = sorted.size();
-    const double p99 = n == 0 ? 0.0 : sorted[std::min(n - 1, (n * 99 + 99) / 100 - 1)];
-    std::printf(
-        "time face_pipeline_frame %.3f ms mean, %.3f ms median, %.3f ms p99, %.3f ms max"
-        "  (%zu FGNet 720x576 frames of %s, motion /2 + faces; a face shown in %d)\n",
-        mean, n ? sorted[n / 2] : 0.0, p99, n ? sorted.back() : 0.0, n, faces.imageDir().c_str(),
-        shownFrames);
-
     std::printf("ratio vj_vs_opencv %.2f\n", ms[1] / ms[0]);
     for (int i = 1; i < faces.cascadeCount(); ++i) {
         const auto k = static_cast<std::size_t>(2 * i);
@@ -215,8 +292,7 @@ void printFaceRatios(FaceCases& faces)
         std::printf("info lk_vs_opencv_%s %.2f\n", FaceCases::flowResolutionName(r),
                     ms[k + 1] / ms[k]);
     }
-    std::printf("ratio face_pipeline_mean_ms %.3f\n", mean);
-    std::printf("ratio face_pipeline_p99_ms %.3f\n", p99);
+    printPipelineRatios(faces);
 }
 
 void printRenderRatios(const std::string& catalogueToml)
