@@ -1,16 +1,20 @@
 // vision-frame-loop: the firmware's vision pipeline (frame check, chromaticity, card, motion,
-// faces; config/mirror.toml's defaults) run over raw frames already in memory, with a mark before
+// faces and, given a model, the AAM fit; config/mirror.toml's defaults) run over raw frames
+// already in memory, with a mark before
 // every stage and after the last one. Built for arm64 and run by scripts/bench-arm under
 // qemu-aarch64 with bench/arm/insn_count_plugin.c, which writes the instruction count at every
 // mark: per frame, the differences between consecutive marks are the stages' instruction counts.
 //
 //   vision-frame-loop --size 720x480 --frames F.raw --train T.raw --cascade XML [--skip N]
+//                     [--model M.aam]
 //
 // F.raw is frames of 720x480 BGR24 bytes back to back, T.raw one frame on whose central half the
 // card's colour is trained (before the loop and outside the marks, by a pipeline of its own), as
 // the console's `card train` does. The first N frames of F.raw are skipped (a card sequence's
 // training frame). Prints the stage names and the frame count (what the marks mean), nothing
 // per frame. No OpenCV: the frames are decoded on the host (bench/arm/raw_frames.cpp).
+#include "vision/aam_model.hpp"
+#include "vision/aam_stage.hpp"
 #include "vision/card_stage.hpp"
 #include "vision/chromaticity_stage.hpp"
 #include "vision/face_stage.hpp"
@@ -41,7 +45,7 @@ constexpr float kTrainFraction = 0.5f;  // config/mirror.toml [card] train_fract
 
 struct Options {
     vision::Size size{720, 480};
-    std::string frames, train, cascade;
+    std::string frames, train, cascade, model;
     long skip = 0;
 };
 
@@ -60,6 +64,8 @@ Options parse(int argc, char** argv)
             o.train = v;
         } else if (a == "--cascade") {
             o.cascade = v;
+        } else if (a == "--model") {
+            o.model = v;
         } else if (a == "--skip") {
             o.skip = std::strtol(v.c_str(), nullptr, 10);
         } else {
@@ -70,7 +76,7 @@ Options parse(int argc, char** argv)
         o.size.height <= 0)
         throw std::runtime_error(
             "usage: vision-frame-loop --size WxH --frames F.raw --train T.raw "
-            "--cascade XML [--skip N]");
+            "--cascade XML [--skip N] [--model M.aam]");
     return o;
 }
 
@@ -115,8 +121,10 @@ vision::CardColorModel trainCard(const vision::ImageBuffer& frame, vision::Size 
     return stage.tracker().trainedModel();
 }
 
-/// The firmware's pipeline with config/mirror.toml's defaults (firmware/src/pipeline_builder.cpp).
-void buildPipeline(const Options& o, const vision::CardColorModel& card, vision::Pipeline& p)
+/// The firmware's pipeline with config/mirror.toml's defaults (firmware/src/pipeline_builder.cpp);
+/// the AAM stage too when `aam` is given ([faces] model set).
+void buildPipeline(const Options& o, const vision::CardColorModel& card,
+                   const vision::AamModel* aam, vision::Pipeline& p)
 {
     p.add(std::make_unique<vision::FrameCheckStage>(o.size, kFormat));
     p.add(std::make_unique<vision::ChromaticityStage>(o.size));
@@ -129,8 +137,24 @@ void buildPipeline(const Options& o, const vision::CardColorModel& card, vision:
     faces.detectionWindowBudget = 5000;
     auto faceStage =
         std::make_unique<vision::FaceStage>(*motion, vision::loadHaarCascade(o.cascade), faces);
+    std::unique_ptr<vision::AamStage> aamStage;
+    if (aam != nullptr)
+        aamStage = std::make_unique<vision::AamStage>(*motion, *faceStage, *aam);
     p.add(std::move(motion));
     p.add(std::move(faceStage));
+    if (aamStage)
+        p.add(std::move(aamStage));
+}
+
+/// The AAM model at `path` ("" = none); throws with the loader's one line when it is unusable.
+std::unique_ptr<vision::AamModel> loadModel(const std::string& path)
+{
+    if (path.empty())
+        return nullptr;
+    vision::AamModelFile f = vision::loadAamModel(path);
+    if (!f.ok)
+        throw std::runtime_error(f.problem);
+    return std::make_unique<vision::AamModel>(std::move(f.model));
 }
 
 }  // namespace
@@ -141,8 +165,9 @@ int main(int argc, char** argv)
         const Options o = parse(argc, argv);
         const std::vector<vision::ImageBuffer> frames = readFrames(o.frames, o.size);
         const vision::CardColorModel card = trainCard(readFrames(o.train, o.size).front(), o.size);
+        const std::unique_ptr<vision::AamModel> aam = loadModel(o.model);
         vision::Pipeline pipeline;
-        buildPipeline(o, card, pipeline);
+        buildPipeline(o, card, aam.get(), pipeline);
         std::printf("stages:");
         for (std::size_t s = 0; s < pipeline.size(); ++s)
             std::printf(" %s", pipeline.stage(s).name());
