@@ -142,6 +142,7 @@ void OverlayControl::update(std::span<const vision::TrackedFace> faces,
             d.hasPose = true;
             d.pose = vision::headPoseFromFit(smoothedFits[i], camera,
                                              layer_->options().head.faceWidthMetres);
+            d.animation = smoothedFits[i].animation;
         }
         if (!f.shown())
             continue;  // not drawn: wears nothing

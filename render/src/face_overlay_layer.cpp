@@ -161,6 +161,7 @@ FaceOverlayLayer::FaceOverlayLayer(const OverlayCatalogue& catalogue,
         part.placement.scale = overlay.scale;
         part.placement.offset = overlay.offset;
         part.placement.rotationDegrees = overlay.rotationDegrees;
+        part.placement.follows = overlay.follows;
         std::vector<std::array<float, 3>> positions;
         for (const OverlayMesh& mesh : overlay.meshes)
             for (const OverlayVertex& v : mesh.vertices)
@@ -324,7 +325,8 @@ void FaceOverlayLayer::draw(const LayerContext& context) noexcept
     for (int i = 0; i < count; ++i) {
         Drawn& face = drawn[static_cast<std::size_t>(i)];
         const Gl::Part& part = gl_->overlays[static_cast<std::size_t>(face.drawing->overlay)];
-        const Affine model = detail::modelToHead(part.placement, head);
+        const Affine model = detail::modelToHead(
+            part.placement, head, face.drawing->hasPose ? &face.drawing->animation : nullptr);
         face.modelView.setIdentity();
         face.modelView.topLeftCorner<3, 3>() = face.pose.rotation * model.linear;
         face.modelView.topRightCorner<3, 1>() =

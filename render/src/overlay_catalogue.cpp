@@ -3,6 +3,7 @@
 #include "overlay_obj_file.hpp"
 #include "overlay_texture_file.hpp"
 #include "vision/bounded_file.hpp"
+#include "vision/face_fit.hpp"
 #include "vision/input_limits.hpp"
 
 #include <toml++/toml.h>
@@ -20,7 +21,8 @@ namespace render {
 namespace {
 
 constexpr const char* kKindNames[] = {"hat", "glasses", "other"};
-constexpr const char* kAnchorNames[] = {"eye_midpoint", "nose_bridge", "forehead_top", "head_top"};
+constexpr const char* kAnchorNames[] = {"eye_midpoint", "nose_bridge", "forehead_top",
+                                        "head_top",     "upper_lip",   "chin"};
 constexpr const char* kMeasureNames[] = {"interocular", "face_width"};
 
 /// Builds the one-line errors: "<file>:<line>: overlay '<name>': <why>".
@@ -197,6 +199,61 @@ OverlayMesh readMesh(const toml::table& table, const std::filesystem::path& base
     return mesh;
 }
 
+// One [[overlay.follow]] table (FORMAT.md): which animation unit, and what it does per unit.
+OverlayFollow readFollow(const toml::table& table, const Errors& errors)
+{
+    for (const auto& [key, value] : table) {
+        if (key != "unit" && key != "offset" && key != "rotation" && key != "stretch")
+            errors.fail(value.source(), "unknown follow key '" + std::string(key.str()) + "'");
+    }
+    OverlayFollow follow;
+    const std::string unit = requiredString(table, "unit", errors);
+    const auto& names = vision::kFaceFitAnimationNames;
+    const auto at = std::find(names.begin(), names.end(), unit);
+    if (at == names.end()) {
+        std::string allowed;
+        for (const std::string_view n : names) {
+            if (!allowed.empty())
+                allowed += '|';
+            allowed.append(n);
+        }
+        errors.fail(table.get("unit")->source(),
+                    "follow unit must be one of " + allowed + ", not '" + unit + "'");
+    }
+    follow.unit = static_cast<int>(at - names.begin());
+    follow.offset = optionalVector<3>(table, "offset", {}, -10.f, 10.f, errors);
+    follow.rotationDegrees = optionalVector<3>(table, "rotation", {}, -90.f, 90.f, errors);
+    follow.stretch = optionalVector<3>(table, "stretch", {}, -2.f, 2.f, errors);
+    return follow;
+}
+
+std::vector<OverlayFollow> readFollows(const toml::table& table, const Errors& errors)
+{
+    std::vector<OverlayFollow> follows;
+    const toml::node* node = table.get("follow");
+    if (node == nullptr)
+        return follows;
+    const toml::array* array = node->as_array();
+    if (array == nullptr || !array->is_array_of_tables())
+        errors.fail(node->source(), "follow must be an array of tables ([[overlay.follow]])");
+    if (array->size() > kMaxOverlayFollows)
+        errors.fail(node->source(), "more than " + std::to_string(kMaxOverlayFollows) +
+                                        " [[overlay.follow]] tables");
+    for (const toml::node& item : *array) {
+        const OverlayFollow f = readFollow(*item.as_table(), errors);
+        for (const OverlayFollow& other : follows)
+            if (other.unit == f.unit)
+                errors.fail(
+                    item.source(),
+                    "a second follow of unit '" +
+                        std::string(
+                            vision::kFaceFitAnimationNames[static_cast<std::size_t>(f.unit)]) +
+                        "'");
+        follows.push_back(f);
+    }
+    return follows;
+}
+
 Overlay readOverlay(const toml::table& table, const std::filesystem::path& base, Errors& errors)
 {
     Overlay overlay;
@@ -207,8 +264,8 @@ Overlay readOverlay(const toml::table& table, const std::filesystem::path& base,
                     "name '" + overlay.name + "' must be lower-case letters, digits, _ or -");
     errors.setOverlay(overlay.name);
     for (const auto& [key, value] : table) {
-        static constexpr const char* kKeys[] = {"name",  "kind",   "anchor",   "measure",
-                                                "scale", "offset", "rotation", "mesh"};
+        static constexpr const char* kKeys[] = {"name",   "kind",     "anchor", "measure", "scale",
+                                                "offset", "rotation", "follow", "mesh"};
         bool known = false;
         for (const char* k : kKeys)
             known = known || key == k;
@@ -223,6 +280,7 @@ Overlay readOverlay(const toml::table& table, const std::filesystem::path& base,
     overlay.scale = optionalNumber(table, "scale", 1.f, 1e-3f, 1e3f, errors);
     overlay.offset = optionalVector<3>(table, "offset", {}, -100.f, 100.f, errors);
     overlay.rotationDegrees = optionalVector<3>(table, "rotation", {}, -360.f, 360.f, errors);
+    overlay.follows = readFollows(table, errors);
     const toml::node* meshes = table.get("mesh");
     if (meshes == nullptr)
         errors.fail(table.source(), "no [[overlay.mesh]]");
@@ -236,10 +294,10 @@ Overlay readOverlay(const toml::table& table, const std::filesystem::path& base,
     }
     // The software renderer's budget: every face may wear the overlay (FORMAT.md).
     if (triangles > static_cast<std::size_t>(vision::limits::kMaxOverlayTriangles))
-        errors.fail(meshes->source(),
-                    std::to_string(triangles) + " triangles, over the budget of " +
-                        std::to_string(vision::limits::kMaxOverlayTriangles) +
-                        " per overlay (all its meshes)");
+        errors.fail(meshes->source(), std::to_string(triangles) +
+                                          " triangles, over the budget of " +
+                                          std::to_string(vision::limits::kMaxOverlayTriangles) +
+                                          " per overlay (all its meshes)");
     return overlay;
 }
 

@@ -166,7 +166,7 @@ TEST(OverlayCatalogue, ErrorsAreOneLineNamingFileLineAndWhy)
     std::string e = loadError(
         "anchor", std::string(kGood).replace(std::string(kGood).find("eye_midpoint"), 12, "crown"));
     EXPECT_NE(e.find("catalogue.toml:5: overlay 'g': anchor must be one of "
-                     "eye_midpoint|nose_bridge|forehead_top|head_top, not 'crown'"),
+                     "eye_midpoint|nose_bridge|forehead_top|head_top|upper_lip|chin, not 'crown'"),
               std::string::npos)
         << e;
     EXPECT_EQ(e.find('\n'), std::string::npos);

@@ -248,6 +248,24 @@ std::string catalogueEntry(const Model& model)
                 ", " + number(material.rgba[2], 3) + ", " + number(material.rgba[3], 3) + "]\n";
         text += "  shininess = " + number(material.shininess, 1) + "\n";
     }
+    const auto vector = [](const std::array<double, 3>& v, int digits) {
+        std::string out = "[";
+        for (std::size_t i = 0; i < v.size(); ++i) {
+            out += number(v[i], digits);
+            out += i + 1 < v.size() ? ", " : "]";
+        }
+        return out;
+    };
+    for (const Follow& f : model.follows) {
+        text += "\n  [[overlay.follow]]  # per unit of the fitted animation value\n";
+        text += "  unit = \"" + f.unit + "\"\n";
+        if (f.offset != std::array<double, 3>{})
+            text += "  offset = " + vector(f.offset, 4) + "  # metres of the OBJ\n";
+        if (f.rotationDegrees != std::array<double, 3>{})
+            text += "  rotation = " + vector(f.rotationDegrees, 1) + "\n";
+        if (f.stretch != std::array<double, 3>{})
+            text += "  stretch = " + vector(f.stretch, 3) + "\n";
+    }
     return text;
 }
 

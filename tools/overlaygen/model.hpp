@@ -32,6 +32,15 @@ struct Part {
 /// tagged with part indices. Geometry is in metres in the catalogue's model axes (x the wearer's
 /// left, y up, z out of the face) with the origin on the anchor; `scale` turns the catalogue's
 /// head measure back into metres.
+/// One [[overlay.follow]] of the catalogue (FORMAT.md): per unit of a fitted animation value, a
+/// move (OBJ units, here metres), a turn (degrees) and a relative stretch along the model axes.
+struct Follow {
+    std::string unit;  ///< vision::kFaceFitAnimationNames, e.g. "upper_lip_raiser"
+    std::array<double, 3> offset{0.0, 0.0, 0.0};
+    std::array<double, 3> rotationDegrees{0.0, 0.0, 0.0};
+    std::array<double, 3> stretch{0.0, 0.0, 0.0};
+};
+
 struct Model {
     std::string name;
     std::string kind;
@@ -39,6 +48,7 @@ struct Model {
     std::string measure;
     double scale = 1.0;
     std::array<double, 3> rotationDegrees{0.0, 0.0, 0.0};
+    std::vector<Follow> follows;
     std::string description;
     std::vector<Material> materials;
     std::vector<Part> parts;

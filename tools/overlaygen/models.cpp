@@ -604,8 +604,9 @@ Model buildRainHat()
 
 std::vector<Model> buildAllModels()
 {
-    return {buildGlasses(),  buildSunglasses(), buildTopHat(), buildGraduationCap(),
-            buildPartyHat(), buildSunHat(),     buildRainHat()};
+    return {buildGlasses(),       buildSunglasses(), buildTopHat(),
+            buildGraduationCap(), buildPartyHat(),   buildSunHat(),
+            buildRainHat(),       buildMoustache(),  buildGoatee()};
 }
 
 }  // namespace overlaygen

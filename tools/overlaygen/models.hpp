@@ -19,6 +19,9 @@ struct HeadMetrics {
     static constexpr double proxySquareness = 3.0;
     /// The head_top anchor.
     static constexpr double headTop[3] = {0.0, 0.12, -0.0825};
+    /// The upper_lip and chin anchors (render/head_model.hpp, in metres).
+    static constexpr double upperLip[3] = {0.0, -0.051, 0.018};
+    static constexpr double chin[3] = {0.0, -0.090, 0.009};
     /// Inner semi-axes of a hat's opening: an ellipse of circumference ~0.57 m.
     static constexpr double hatInnerX = 0.080;
     static constexpr double hatInnerZ = 0.100;
@@ -33,6 +36,9 @@ Model buildGraduationCap();
 Model buildPartyHat();
 Model buildSunHat();
 Model buildRainHat();
+/// Face hair that follows the fitted face's animation units (face_hair.cpp).
+Model buildMoustache();
+Model buildGoatee();
 
 /// All of them, in catalogue order.
 std::vector<Model> buildAllModels();

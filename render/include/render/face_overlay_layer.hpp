@@ -29,6 +29,7 @@
 #include "render/head_model.hpp"
 #include "render/overlay_catalogue.hpp"
 #include "render/overlay_layer.hpp"
+#include "vision/face_fit.hpp"
 #include "vision/face_tracker.hpp"
 #include "vision/head_pose.hpp"
 
@@ -62,6 +63,9 @@ struct FaceDrawing {
     /// the face box (vision::headPoseFromFace: yaw and pitch zero).
     bool hasPose = false;
     vision::HeadPose pose{};
+    /// With hasPose, the fitted face's animation values (vision::FaceFit::animation): overlays
+    /// that follow them (OverlayFollow) change with the face.
+    std::array<float, vision::kAamAnimationUnits> animation{};
 };
 
 class FaceOverlayLayer final : public OverlayLayer {

@@ -22,6 +22,11 @@ struct HeadModel {
     std::array<float, 3> noseBridge{0.f, -0.04f, 0.06f};
     std::array<float, 3> foreheadTop{0.f, 0.45f, -0.04f};
     std::array<float, 3> headTop{0.f, 0.80f, -0.55f};
+    /// The middle of the upper lip's top (under the nose) and the chin's front, from CANDIDE-3
+    /// (vertices 7 and 10, relative to its eye corners' midpoint, the mesh 0.735 of W wide as the
+    /// AAM start places it).
+    std::array<float, 3> upperLip{0.f, -0.34f, 0.12f};
+    std::array<float, 3> chin{0.f, -0.60f, 0.06f};
 
     /// The invisible head that hides overlay parts behind it: an ellipsoid whose horizontal
     /// sections are superellipses |x/a|^n + |z/c|^n = 1 with n = proxySquareness (2 = ellipse):

@@ -18,7 +18,14 @@ namespace render {
 enum class OverlayKind : std::uint8_t { Hat, Glasses, Other };
 
 /// The point of the head model (render/head_model.hpp) an overlay's origin is put on.
-enum class OverlayAnchor : std::uint8_t { EyeMidpoint, NoseBridge, ForeheadTop, HeadTop };
+enum class OverlayAnchor : std::uint8_t {
+    EyeMidpoint,
+    NoseBridge,
+    ForeheadTop,
+    HeadTop,
+    UpperLip,
+    Chin
+};
 
 /// The head measure one model unit is scaled to.
 enum class HeadMeasure : std::uint8_t { Interocular, FaceWidth };
@@ -64,6 +71,22 @@ struct OverlayMesh {
     OverlayTexture texture;  ///< empty: no texture
 };
 
+/// How an overlay follows one of the fitted face's animation units (§5.3; beyond the
+/// dissertation, its future work: overlays that conform to the face as it changes shape). Per
+/// unit of the animation value v (vision::FaceFit::animation, named by
+/// vision::kFaceFitAnimationNames): the model is stretched along its axes by 1 + v * stretch,
+/// turned by v * rotation and moved by v * offset, on top of the overlay's own placement
+/// (FORMAT.md). Declared in the catalogue, no code per overlay.
+struct OverlayFollow {
+    int unit = 0;                            ///< index into vision::kFaceFitAnimationNames
+    std::array<float, 3> offset{};           ///< model axes, in units of the measure
+    std::array<float, 3> rotationDegrees{};  ///< about model x, then y, then z
+    std::array<float, 3> stretch{};          ///< relative growth of x, y, z
+};
+
+/// Animation units one overlay may follow (each at most once).
+inline constexpr std::size_t kMaxOverlayFollows = 6;
+
 struct Overlay {
     std::string name;
     OverlayKind kind = OverlayKind::Other;
@@ -72,6 +95,7 @@ struct Overlay {
     float scale = 1.f;
     std::array<float, 3> offset{};           ///< model axes, in units of the measure
     std::array<float, 3> rotationDegrees{};  ///< about model x, then y, then z
+    std::vector<OverlayFollow> follows;      ///< at most kMaxOverlayFollows, distinct units
     std::vector<OverlayMesh> meshes;
 };
 
@@ -82,7 +106,8 @@ public:
     /// Reads `catalogueToml` and every OBJ/PNG it names (paths relative to it). Throws
     /// std::runtime_error with one line naming the file, the TOML line or key (or the OBJ line)
     /// and why, e.g. "overlay catalogue assets/overlays/catalogue.toml:12: overlay 'top_hat':
-    /// anchor must be one of eye_midpoint|nose_bridge|forehead_top|head_top, not 'crown'".
+    /// anchor must be one of eye_midpoint|nose_bridge|forehead_top|head_top|upper_lip|chin, not
+    /// 'crown'".
     static OverlayCatalogue load(const std::string& catalogueToml);
 
     std::span<const Overlay> overlays() const noexcept { return overlays_; }
