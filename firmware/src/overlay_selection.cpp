@@ -140,15 +140,18 @@ OverlayChange OverlaySelection::apply(int overlay, bool relative, int delta) noe
 {
     if (options_.mode == OverlayMode::PerFace) {
         if (Slot* target = targetSlot()) {
-            target->wanted = relative ? step(target->wanted, delta) : overlay;
+            target->wanted = relative ? step(target->target, delta) : overlay;
+            target->own = true;
             setSelected(target->wanted);
             return {target->wanted, target->faceId};
         }
     }
     setSelected(relative ? step(selected_, delta) : overlay);
     if (options_.mode == OverlayMode::Global) {
-        for (Slot& s : slots_)
+        for (Slot& s : slots_) {
             s.wanted = selected_;
+            s.own = s.faceId != 0;  // everyone on screen now chose it
+        }
     }
     return {selected_, 0};
 }
@@ -166,8 +169,10 @@ OverlayChange OverlaySelection::prev() noexcept
 OverlayChange OverlaySelection::off() noexcept
 {
     setSelected(-1);
-    for (Slot& s : slots_)
+    for (Slot& s : slots_) {
         s.wanted = -1;
+        s.own = s.faceId != 0;
+    }
     return {-1, 0};
 }
 
@@ -237,6 +242,8 @@ void OverlaySelection::update(std::span<const vision::TrackedFace> faces,
         *slot = Slot{};
         slot->faceId = face.id;
         slot->wanted = slot->shown = start;
+        decide(*slot);
+        slot->shown = slot->target;
         slot->sinceNs = nowNs;
         slot->seen = true;
         slot->size = face.size;
@@ -248,23 +255,24 @@ void OverlaySelection::update(std::span<const vision::TrackedFace> faces,
             continue;
         if (options_.mode == OverlayMode::Global)
             s.wanted = selected_;
+        decide(s);
         if (options_.fadeNs == 0) {
-            s.shown = s.wanted;
+            s.shown = s.target;
             s.alpha = s.shown >= 0 ? 1.f : 0.f;
             continue;
         }
-        if (s.sinceNs == nowNs && s.alpha == 0.f && s.shown == s.wanted)
+        if (s.sinceNs == nowNs && s.alpha == 0.f && s.shown == s.target)
             continue;  // first frame of a new face: it starts invisible
-        if (s.shown != s.wanted) {
+        if (s.shown != s.target) {
             if (s.shown < 0 || s.alpha <= 0.f) {
-                s.shown = s.wanted;  // nothing visible to fade out: start the new one
+                s.shown = s.target;  // nothing visible to fade out: start the new one
                 s.alpha = 0.f;
             } else {
-                s.fast = s.wanted >= 0;
+                s.fast = s.target >= 0;
                 const float rate = static_cast<float>(dt / fadeNs) * (s.fast ? 2.f : 1.f);
                 s.alpha = std::max(0.f, s.alpha - rate);
                 if (s.alpha == 0.f)
-                    s.shown = s.wanted;
+                    s.shown = s.target;
                 continue;
             }
         }
@@ -278,6 +286,41 @@ void OverlaySelection::update(std::span<const vision::TrackedFace> faces,
         if (s.alpha == 1.f)
             s.fast = false;
     }
+}
+
+void OverlaySelection::decide(Slot& s) const noexcept
+{
+    RuleOffers offers;
+    if (s.own)
+        offers.offer(OverlayRule::Person, s.wanted);
+    for (const OverlayRule r : {OverlayRule::Birthday, OverlayRule::Day, OverlayRule::Weather}) {
+        if (const int o = automatic_[static_cast<std::size_t>(r)]; o >= 0)
+            offers.offer(r, o);
+    }
+    if (s.wanted >= 0)  // global: selected_; per_face: what the face started with
+        offers.offer(OverlayRule::Global, s.wanted);
+    const RuleDecision d = decideOverlay(options_.precedence, offers);
+    s.target = d.decided ? d.overlay : -1;
+    s.rule = d.decided ? d.rule : OverlayRule::Global;
+}
+
+void OverlaySelection::setAutomatic(OverlayRule rule, int overlay) noexcept
+{
+    if (rule == OverlayRule::Person || rule == OverlayRule::Global || overlay < -1 ||
+        overlay >= size())
+        return;
+    automatic_[static_cast<std::size_t>(rule)] = overlay;
+}
+
+int OverlaySelection::automatic(OverlayRule rule) const noexcept
+{
+    return automatic_[static_cast<std::size_t>(rule)];
+}
+
+OverlayRule OverlaySelection::ruleFor(int faceId) const noexcept
+{
+    const Slot* s = findSlot(faceId);
+    return s ? s->rule : OverlayRule::Global;
 }
 
 OverlayChoice OverlaySelection::choiceFor(int faceId) const noexcept

@@ -338,3 +338,80 @@ TEST(OverlaySelection, FramesAndActionsDoNotAllocate)
 }
 
 }  // namespace
+
+// The automatic rules (firmware/overlay_rules.hpp): the day's and the weather's overlays go on
+// faces nobody chose for; a button press is the choice of the faces on screen; the order is the
+// configured precedence.
+TEST(OverlaySelectionRules, TheDayAndTheWeatherDressNewFacesAndAButtonPressStillWins)
+{
+    OverlaySelectionOptions o = options(OverlayMode::Global);
+    o.fadeNs = 0;
+    OverlaySelection s(catalogue(), o, 0);  // glasses for everyone
+    s.setAutomatic(firmware::OverlayRule::Weather, 1);  // sunglasses: a sunny day
+    const std::vector<vision::TrackedFace> one{face(1, 100.f)};
+    s.update(one, ms(0));
+    EXPECT_EQ(s.choiceFor(1).overlay, 1);
+    EXPECT_EQ(s.ruleFor(1), firmware::OverlayRule::Weather);
+
+    s.setAutomatic(firmware::OverlayRule::Day, 3);  // a holiday beats the weather
+    s.update(one, ms(40));
+    EXPECT_EQ(s.choiceFor(1).overlay, 3);
+    EXPECT_EQ(s.ruleFor(1), firmware::OverlayRule::Day);
+
+    s.next();  // the person in front presses the button: their own choice from now on
+    s.update(one, ms(80));
+    EXPECT_EQ(s.choiceFor(1).overlay, 1) << "next after glasses";
+    EXPECT_EQ(s.ruleFor(1), firmware::OverlayRule::Person);
+
+    const std::vector<vision::TrackedFace> two{face(1, 100.f), face(2, 90.f)};
+    s.update(two, ms(120));
+    EXPECT_EQ(s.choiceFor(2).overlay, 3) << "a newcomer gets the day's";
+    EXPECT_EQ(s.choiceFor(1).overlay, 1);
+
+    s.setAutomatic(firmware::OverlayRule::Day, -1);  // the holiday is over
+    s.setAutomatic(firmware::OverlayRule::Weather, -1);  // no forecast
+    s.update(two, ms(160));
+    EXPECT_EQ(s.choiceFor(2).overlay, 1) << "the global choice";
+    EXPECT_EQ(s.ruleFor(2), firmware::OverlayRule::Global);
+
+    s.off();  // "none" is a choice too
+    s.setAutomatic(firmware::OverlayRule::Day, 3);
+    s.update(two, ms(200));
+    EXPECT_EQ(s.choiceFor(1).overlay, -1);
+    EXPECT_EQ(s.choiceFor(2).overlay, -1);
+    s.setAutomatic(firmware::OverlayRule::Day, 7);  // out of range: ignored
+    EXPECT_EQ(s.automatic(firmware::OverlayRule::Day), 3);
+}
+
+TEST(OverlaySelectionRules, ThePrecedenceIsConfigurable)
+{
+    firmware::OverlayPrecedence order{};
+    std::string problem;
+    const std::vector<std::string> words{"global", "person", "weather", "day", "birthday"};
+    ASSERT_TRUE(firmware::parseOverlayPrecedence(words, order, problem)) << problem;
+    OverlaySelectionOptions o = options(OverlayMode::Global);
+    o.fadeNs = 0;
+    o.precedence = order;
+    OverlaySelection s(catalogue(), o, 2);
+    s.setAutomatic(firmware::OverlayRule::Day, 3);
+    s.setAutomatic(firmware::OverlayRule::Weather, 1);
+    const std::vector<vision::TrackedFace> one{face(1, 100.f)};
+    s.update(one, ms(0));
+    EXPECT_EQ(s.choiceFor(1).overlay, 2) << "the global choice first";
+    s.off();
+    s.update(one, ms(40));
+    EXPECT_EQ(s.choiceFor(1).overlay, -1) << "the person's none, before the weather";
+    s.update({}, ms(80));
+    s.update(one, ms(120));  // a new track: no own choice, global none offers nothing
+    EXPECT_EQ(s.choiceFor(1).overlay, 1) << "then the weather, before the day";
+
+    const std::pair<std::vector<std::string>, const char*> bad[] = {
+        {{"person", "day"}, "must name each of"},
+        {{"person", "birthday", "day", "weather", "moon"}, "'moon' is not one of"},
+        {{"person", "birthday", "day", "weather", "day"}, "names 'day' twice"},
+    };
+    for (const auto& [w, why] : bad) {
+        EXPECT_FALSE(firmware::parseOverlayPrecedence(w, order, problem));
+        EXPECT_NE(problem.find(why), std::string::npos) << problem;
+    }
+}

@@ -14,6 +14,13 @@
 // In both modes the cycle of next/prev runs through "none": none, 0, 1, ..., n-1, none, so the
 // two buttons alone can also take overlays off.
 //
+// Above the mode's choice stand the automatic rules (firmware/overlay_rules.hpp): the calendar's
+// overlay for the day and the weather's, offered by setAutomatic(), decided per face in the order
+// of OverlaySelectionOptions::precedence. A choice made with the buttons or the console is the
+// own choice ("person") of the faces it acted on (per_face: the target face; global: every face on
+// screen), which by default beats the automatic ones for the life of their tracks: pressing a
+// button always changes what the person in front of the mirror wears.
+//
 // A face gets a state when it is first shown (TrackedFace::shown(): confirmed, or missing within
 // the tracker's grace) and loses it when the tracker drops it: with no pose left there is nothing
 // to draw on. Its overlay fades in from alpha 0 over `fadeNs`; a change of overlay fades the old
@@ -23,8 +30,10 @@
 // Sizes are fixed at construction (maxFaces states); update(), choiceFor() and the actions never
 // allocate and never throw. Faces beyond maxFaces wear nothing.
 
+#include "firmware/overlay_rules.hpp"
 #include "vision/face_tracker.hpp"
 
+#include <array>
 #include <cstdint>
 #include <span>
 #include <string>
@@ -56,6 +65,7 @@ struct OverlaySelectionOptions {
     OverlayMode mode = OverlayMode::Global;
     std::int64_t fadeNs = 250'000'000;  ///< a full fade in or out; 0 = instant
     int maxFaces = 8;                   ///< faces with their own state at most
+    OverlayPrecedence precedence = kDefaultOverlayPrecedence;
 };
 
 class OverlaySelection {
@@ -96,6 +106,14 @@ public:
     void update(std::span<const vision::TrackedFace> faces, std::int64_t nowNs) noexcept;
     /// What to draw on face `faceId` this frame; {-1, 0} for a face without an overlay.
     OverlayChoice choiceFor(int faceId) const noexcept;
+    /// The rule that chose face `faceId`'s overlay (Global for an unknown face).
+    OverlayRule ruleFor(int faceId) const noexcept;
+
+    /// What an automatic rule (Birthday, Day or Weather) offers every face without an own choice
+    /// from the next update() on: an overlay index, or -1 to offer nothing. Other rules and
+    /// indices out of range are ignored.
+    void setAutomatic(OverlayRule rule, int overlay) noexcept;
+    int automatic(OverlayRule rule) const noexcept;
 
 private:
     struct Slot {
@@ -105,6 +123,9 @@ private:
         float alpha = 0.f;
         bool fast = false;  ///< switching between two overlays: fade at twice the rate
         bool seen = false;
+        bool own = false;  ///< wanted was chosen for this face (the person rule)
+        int target = -1;   ///< what the rules decided: what the face fades to
+        OverlayRule rule = OverlayRule::Global;
         float size = 0.f;
         std::int64_t sinceNs = 0;  ///< first shown
     };
@@ -117,11 +138,13 @@ private:
     int step(int from, int delta) const noexcept;
     OverlayChange apply(int overlay, bool relative, int delta) noexcept;
     void setSelected(int overlay) noexcept;
+    void decide(Slot& slot) const noexcept;
 
     std::vector<std::string> names_;
     OverlaySelectionOptions options_;
     std::vector<Slot> slots_;
     int selected_ = -1;
+    std::array<int, kOverlayRules> automatic_{-1, -1, -1, -1, -1};
     std::uint32_t generation_ = 0;
     std::int64_t lastNs_ = 0;
     bool started_ = false;
