@@ -4,6 +4,8 @@
 
 #include "config_value_text.hpp"
 #include "firmware/button_actions.hpp"
+#include "firmware/day_calendar.hpp"
+#include "firmware/overlay_rules.hpp"
 #include "platform/display_mode.hpp"
 
 #include <cstdio>
@@ -49,8 +51,8 @@ std::string checkText(std::string_view value)
         if (byte < 0x20 || byte == 0x7f) {
             char code[8];
             std::snprintf(code, sizeof code, "0x%02X", byte);
-            return std::string("control character ") + code + " at byte " +
-                   std::to_string(i + 1) + " of " + excerpt(value);
+            return std::string("control character ") + code + " at byte " + std::to_string(i + 1) +
+                   " of " + excerpt(value);
         }
     }
     return {};
@@ -97,6 +99,33 @@ std::string checkOverlayName(std::string_view value)
     if (value.empty())
         return "needs \"none\" or an overlay name";
     return checkOptionalPath(value);
+}
+
+std::string checkOverlayRule(std::string_view value)
+{
+    OverlayRule rule{};
+    return parseOverlayRule(value, rule) ? ""
+                                         : "needs one of person, birthday, day, weather, global";
+}
+
+std::string checkDayRule(std::string_view value)
+{
+    DayRule rule;
+    std::string problem;
+    if (!parseDayRule(value, rule, problem))
+        return problem;
+    return checkOverlayName(rule.overlay);
+}
+
+std::string checkForecastSource(std::string_view value)
+{
+    if (value.empty())
+        return "";
+    if (value.starts_with("http://") || value.starts_with("https://"))
+        return checkText(value);
+    if (value.starts_with("file:") && value.size() > 5)
+        return checkOptionalPath(value.substr(5));
+    return "needs \"\" (none), an http:// or https:// URL, or file:PATH";
 }
 
 std::string checkSerial(std::string_view value)

@@ -31,6 +31,12 @@ std::string checkOverlayName(std::string_view value);
 std::string checkSerial(std::string_view value);
 /// "", "preferred", "WxH" or "WxH@Hz" (platform::parseDisplayMode).
 std::string checkDisplayMode(std::string_view value);
+/// A rule of the overlay precedence: person, birthday, day, weather or global.
+std::string checkOverlayRule(std::string_view value);
+/// A special day: "MM-DD[..MM-DD] NAME" or "YYYY-MM-DD[..YYYY-MM-DD] NAME" (parseDayRule).
+std::string checkDayRule(std::string_view value);
+/// "" (no forecast), an http:// or https:// URL, or file:PATH.
+std::string checkForecastSource(std::string_view value);
 /// A directory path, not empty.
 std::string checkDirectory(std::string_view value);
 

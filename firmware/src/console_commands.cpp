@@ -173,6 +173,8 @@ void FrameLoop::formatStatus(Reply& reply) const noexcept
         reply.printf("card: %s\n", vision::cardStateName(card_->state()));
     if (faces_)
         reply.printf("faces: %d shown\n", faces_->shown());
+    if (overlays_)
+        overlays_->formatStatus(state_.faces, reply);
     reply.printf("%-14s %8s %8s %8s\n", "stage", "p50 ms", "p99 ms", "mean ms");
     for (std::size_t i = 0; i < stepCount_; ++i) {
         const LatencyHistogram& h = timings_[i].total;

@@ -69,6 +69,10 @@ void OverlayControl::load(const Config& config, vision::Size frameSize)
                                 : OverlayMode::Global;
     selectionOptions.fadeNs = static_cast<std::int64_t>(config.overlay.fadeMs) * 1'000'000;
     selectionOptions.maxFaces = config.faces.maxFaces;
+    std::string problem;
+    if (!parseOverlayPrecedence(config.overlay.precedence, selectionOptions.precedence, problem))
+        MIRROR_LOG_ERROR("overlay.%s; using person, birthday, day, weather, global",
+                         problem.c_str());
     int initial = -1;
     if (config.overlay.initial != "none" && (initial = catalogue.find(config.overlay.initial)) < 0)
         MIRROR_LOG_WARN("overlay.default: no overlay '%s' in %s; starting with none",
@@ -87,6 +91,7 @@ void OverlayControl::load(const Config& config, vision::Size frameSize)
         MIRROR_LOG_WARN("overlay: %s", warning.c_str());
     }
     savedGeneration_ = selection_->generation();
+    automatic_ = std::make_unique<AutomaticOverlays>(config, *selection_);
     warmUp(frameSize);
     MIRROR_LOG_INFO("overlays: %d from %s, wearing %s (%s)", selection_->size(), path.c_str(),
                     selection_->name(selection_->selected()), toString(selection_->mode()));
@@ -124,6 +129,7 @@ void OverlayControl::update(std::span<const vision::TrackedFace> faces,
 {
     if (!selection_)
         return;
+    automatic_->apply(*selection_);
     selection_->update(faces, now);
     // §6: overlays ride on smoothed poses (no jitter, no visible lag), lit like the face; by the
     // fitted head's full pose where the AAM's fit holds (§5.3), else by the box.
@@ -167,10 +173,21 @@ void OverlayControl::format(std::span<const vision::TrackedFace> faces, Reply& r
         if (!f.shown())
             continue;
         const OverlayChoice c = selection_->choiceFor(f.id);
-        reply.printf("face %d: %s alpha %.2f%s\n", f.id, selection_->name(c.overlay),
-                     static_cast<double>(c.alpha),
+        reply.printf("face %d: %s alpha %.2f by %s%s\n", f.id, selection_->name(c.overlay),
+                     static_cast<double>(c.alpha), toString(selection_->ruleFor(f.id)),
                      f.id == selection_->targetFace() ? " (buttons act on this face)" : "");
     }
+}
+
+void OverlayControl::formatStatus(std::span<const vision::TrackedFace> faces,
+                                  Reply& reply) const noexcept
+{
+    if (!selection_) {
+        reply.printf("overlay: none loaded\n");
+        return;
+    }
+    format(faces, reply);
+    automatic_->format(*selection_, reply);
 }
 
 void OverlayControl::command(const Args& args, std::span<const vision::TrackedFace> faces,
@@ -185,6 +202,7 @@ void OverlayControl::command(const Args& args, std::span<const vision::TrackedFa
     const std::string_view what = args[1];
     if (args.size() == 1) {
         format(faces, reply);
+        automatic_->format(*selection_, reply);
         return;
     }
     if (what == "mode") {

@@ -4,6 +4,7 @@
 // (OverlayStateStore), moves the overlays with the smoothed faces (FaceSmoother), lit like the
 // scene around each face, and answers the `overlay` command.
 
+#include "automatic_overlays.hpp"
 #include "firmware/command_shell.hpp"
 #include "firmware/config.hpp"
 #include "firmware/face_smoother.hpp"
@@ -45,6 +46,9 @@ public:
     /// `overlay [next|prev|off|list|NAME|mode global|per_face]`; `faces` as for update().
     void command(const Args& args, std::span<const vision::TrackedFace> faces,
                  Reply& reply) noexcept;
+    /// For `status`: what is worn, today's and the weather's offers (when the forecast was
+    /// fetched) and, per shown face, its overlay and the rule that chose it.
+    void formatStatus(std::span<const vision::TrackedFace> faces, Reply& reply) const noexcept;
 
 private:
     void load(const Config& config, vision::Size frameSize);
@@ -57,6 +61,7 @@ private:
     std::unique_ptr<render::FaceOverlayLayer> layer_;
     std::unique_ptr<OverlaySelection> selection_;
     std::unique_ptr<OverlayStateStore> store_;
+    std::unique_ptr<AutomaticOverlays> automatic_;
     std::uint32_t savedGeneration_ = 0;
     FaceSmoother smoother_;
     vision::Size frameSize_{};  ///< the camera image the faces are in (the overlays' camera)

@@ -80,6 +80,25 @@ struct OverlayConfig {
     int fadeMs = 250;
     std::string initial = "top_hat";  ///< the `default` key: worn at the very first start
     double verticalFovDeg = 50.0;     ///< the camera's, for the overlays' perspective
+    /// Which rule chooses a face's overlay first (firmware/overlay_rules.hpp).
+    std::vector<std::string> precedence{"person", "birthday", "day", "weather", "global"};
+};
+
+struct DaysConfig {
+    /// Special days and their overlays (firmware/day_calendar.hpp), first match wins.
+    std::vector<std::string> dates{"12-24..12-26 santa_hat", "12-31..01-01 party_hat"};
+    std::string birthday = "birthday_hat";  ///< on a known person's birthday
+};
+
+struct WeatherConfig {
+    std::string source;  ///< "" (none), an http(s):// URL or file:PATH (Open-Meteo's JSON)
+    int intervalMinutes = 30;
+    int timeoutSeconds = 10;
+    std::string sun = "sun_hat", rain = "rain_hat", snow = "winter_hat";
+    std::vector<std::int64_t> sunCodes{0, 1};
+    std::vector<std::int64_t> rainCodes{51, 53, 55, 56, 57, 61, 63, 65,
+                                        66, 67, 80, 81, 82, 95, 96, 99};
+    std::vector<std::int64_t> snowCodes{71, 73, 75, 77, 85, 86};
 };
 
 struct VisionConfig {
@@ -131,6 +150,8 @@ struct Config {
     VisionConfig vision;
     FacesConfig faces;
     OverlayConfig overlay;
+    DaysConfig days;
+    WeatherConfig weather;
     ButtonsConfig buttons;
     CardConfig card;
     StateConfig state;

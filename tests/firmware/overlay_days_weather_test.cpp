@@ -1,0 +1,147 @@
+// The calendar and the weather through the frame loop: on a configured special day the talking
+// face wears the day's overlay, with a forecast (a file another service writes) the weather's,
+// a button press still changes what the face wears, and `status` says which rule chose it and
+// when the forecast was fetched.
+#include "fake_console.hpp"
+#include "firmware/day_calendar.hpp"
+#include "firmware/device_factory.hpp"
+#include "firmware/frame_loop.hpp"
+#include "firmware/log.hpp"
+#include "preloaded_face_source.hpp"
+#include "test_paths.hpp"
+
+#include <fcntl.h>
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdio>
+#include <ctime>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <thread>
+
+namespace {
+
+firmware::Config testConfig(const std::string& name)
+{
+    firmware::Config config;
+    config.display.spec = "headless:" + testing_support::freshOutputDir(name);
+    config.display.width = 640;
+    config.display.height = 360;
+    config.display.snapshotEvery = 0;
+    config.card.enabled = false;
+    config.log.summaryIntervalS = 0;
+    config.overlay.fadeMs = 1;
+    config.overlay.initial = "glasses";
+    config.days.dates.clear();
+    config.state.dir = testing_support::freshOutputDir(name + "_state");
+    return config;
+}
+
+int shownFace(const firmware::FrameLoop& loop)
+{
+    for (const vision::TrackedFace& f : loop.lastFrameState().faces)
+        if (f.shown())
+            return f.id;
+    return 0;
+}
+
+// "MM-DD" of today, local time (the calendar's dates).
+std::string today()
+{
+    const firmware::CalendarDay d = firmware::localDay(std::time(nullptr));
+    char text[8];
+    std::snprintf(text, sizeof text, "%02d-%02d", d.month, d.day);
+    return text;
+}
+
+class OverlayDaysWeather : public ::testing::Test {
+protected:
+    void SetUp() override
+    {
+        devNull_ = ::open("/dev/null", O_WRONLY);
+        firmware::setLogFd(devNull_);
+    }
+    void TearDown() override
+    {
+        firmware::setLogFd(2);
+        ::close(devNull_);
+    }
+    int devNull_ = -1;
+};
+
+TEST_F(OverlayDaysWeather, OnASpecialDayTheFaceWearsTheDaysOverlayUntilAButtonSaysOtherwise)
+{
+    firmware::Config config = testConfig("overlay_day");
+    // A past day, today's (as a range of one day), and today's again naming an overlay the
+    // catalogue lacks (a warning at start-up, left out).
+    config.days.dates = {"2001-01-01 top_hat", today() + ".." + today() + " graduation_cap",
+                         today() + " no_such_hat"};
+    firmware::FrameLoop loop(config, std::make_unique<PreloadedFaceSource>(30),
+                             firmware::makeDisplay(config.display));
+    FakeConsole console;
+    loop.attachConsole(&console);
+    ASSERT_NE(loop.overlaySelection(), nullptr);
+    const firmware::OverlaySelection& selection = *loop.overlaySelection();
+    for (int i = 0; i < 25; ++i)
+        ASSERT_TRUE(loop.step());
+    const int face = shownFace(loop);
+    ASSERT_NE(face, 0);
+    EXPECT_STREQ(selection.name(selection.choiceFor(face).overlay), "graduation_cap");
+    EXPECT_EQ(selection.ruleFor(face), firmware::OverlayRule::Day);
+
+    console.type("status\n");
+    ASSERT_TRUE(loop.step());
+    const std::string status(console.output());
+    EXPECT_NE(status.find("day: graduation_cap (" + today() + ".." + today() + " graduation_cap)"),
+              std::string::npos)
+        << status;
+    EXPECT_NE(status.find("face " + std::to_string(face) + ": graduation_cap alpha 1.00 by day"),
+              std::string::npos)
+        << status;
+    EXPECT_NE(status.find("weather: none (no [weather] source)"), std::string::npos) << status;
+
+    console.type("overlay sunglasses\n");
+    for (int i = 0; i < 3; ++i)
+        ASSERT_TRUE(loop.step());
+    EXPECT_STREQ(selection.name(selection.choiceFor(face).overlay), "sunglasses");
+    EXPECT_EQ(selection.ruleFor(face), firmware::OverlayRule::Person);
+}
+
+TEST_F(OverlayDaysWeather, TheForecastPutsItsHatOnAndStatusSaysWhenItWasFetched)
+{
+    firmware::Config config = testConfig("overlay_weather");
+    const std::string forecast = config.state.dir + "/../overlay_weather_forecast.json";
+    std::ofstream(forecast) << R"({"current":{"weather_code":63}})";
+    config.weather.source = "file:" + forecast;
+    firmware::FrameLoop loop(config, std::make_unique<PreloadedFaceSource>(30),
+                             firmware::makeDisplay(config.display));
+    FakeConsole console;
+    loop.attachConsole(&console);
+    ASSERT_NE(loop.overlaySelection(), nullptr);
+    const firmware::OverlaySelection& selection = *loop.overlaySelection();
+    // The forecast is read by another thread; the wall clock decides once a second.
+    for (int i = 0; i < 400 && selection.automatic(firmware::OverlayRule::Weather) < 0; ++i) {
+        ASSERT_TRUE(loop.step());
+        std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
+    for (int i = 0; i < 25; ++i)
+        ASSERT_TRUE(loop.step());
+    const int face = shownFace(loop);
+    ASSERT_NE(face, 0);
+    EXPECT_STREQ(selection.name(selection.choiceFor(face).overlay), "rain_hat");
+    EXPECT_EQ(selection.ruleFor(face), firmware::OverlayRule::Weather);
+    console.type("status\n");
+    ASSERT_TRUE(loop.step());
+    const std::string status(console.output());
+    EXPECT_NE(status.find("weather: rain_hat: rain (code 63) fetched 0 min ago from file:"),
+              std::string::npos)
+        << status;
+    EXPECT_NE(status.find("by weather"), std::string::npos) << status;
+    EXPECT_TRUE(std::filesystem::exists(config.state.dir + "/weather.json"))
+        << "the forecast is kept for a restart without network";
+}
+
+}  // namespace
