@@ -39,8 +39,10 @@ Model buildRainHat();
 /// Face hair that follows the fitted face's animation units (face_hair.cpp).
 Model buildMoustache();
 Model buildGoatee();
-/// Hats of the calendar and the weather (seasonal_hats.cpp): a birthday crown with candles.
+/// Hats of the calendar and the weather (seasonal_hats.cpp): a birthday crown with candles and
+/// a Santa hat.
 Model buildBirthdayHat();
+Model buildSantaHat();
 
 /// All of them, in catalogue order.
 std::vector<Model> buildAllModels();

@@ -1,6 +1,6 @@
 // Seasonal hats for the mirror's calendar and weather: a golden birthday crown with candles (a
-// person's birthday). Built like the other hats (models.cpp): closed solids in a hat frame, placed
-// on the head by placeHat().
+// person's birthday) and a Santa hat (Christmas). Built like the other hats (models.cpp): closed
+// solids in a hat frame, placed on the head by placeHat().
 
 #include "hat_building.hpp"
 #include "models.hpp"
@@ -95,6 +95,76 @@ Model buildBirthdayHat()
     }
 
     placeHat(model, -3.0, 0.0, 0.002, 0.0);
+    return model;
+}
+
+Model buildSantaHat()
+{
+    Model model = hatModel(
+        "santa_hat", "Santa hat: red cone flopping to the wearer's right, white fur band, pompom");
+    const int red = model.addMaterial("velvet", {0.78, 0.05, 0.08, 1.0}, 12.0);
+    const int white = model.addMaterial("fur", {0.97, 0.97, 0.95, 1.0}, 0.0);
+    const int conePart = model.addPart("cone", red, "cone");
+    // The cone's flat bottom in the fur's colour: seen from below it passes for the band's inside.
+    const int liningPart = model.addPart("lining", white, "cone");
+    const int furPart = model.addPart("fur", white);
+    const int pompomPart = model.addPart("pompom", white);
+
+    // The cone: rings along a centre line that rises from the band, bends over the top of the
+    // head and hangs down beside it; the rings shrink to the tip.
+    const double a = 0.084, b = 0.104;
+    const std::vector<Vec3> line = smoothPath({{0.0, 0.0, 0.0},
+                                               {0.0, 0.050, -0.004},
+                                               {-0.012, 0.098, -0.010},
+                                               {-0.052, 0.128, -0.012},
+                                               {-0.098, 0.112, -0.008},
+                                               {-0.126, 0.046, -0.002}},
+                                              2);
+    const int segments = 24, rings = static_cast<int>(line.size());
+    Solid cone = gridSolid(
+        segments, rings + 1, true, false,
+        [&](int i, int j) {
+            if (j == 0)
+                return Vec3(0.0, 0.0, 0.0);
+            const int k = j - 1;
+            const double t = static_cast<double>(k) / (rings - 1);
+            const Vec3& c = line[static_cast<std::size_t>(k)];
+            const Vec3 tangent = (line[static_cast<std::size_t>(std::min(k + 1, rings - 1))] -
+                                  line[static_cast<std::size_t>(std::max(k - 1, 0))])
+                                     .normalized();
+            const Vec3 side = tangent.cross(Vec3::UnitZ()).normalized();
+            const Vec3 depth = side.cross(tangent);
+            const double shrink = std::pow(1.0 - t, 1.35);
+            // Elliptical like the head at the band, round further up.
+            const double rx = shrink * (a + (0.5 * (a + b) - a) * t);
+            const double rz = shrink * (b + (0.5 * (a + b) - b) * t);
+            const double theta = 2.0 * kPi * i / segments;
+            return Vec3(c + rx * std::sin(theta) * side + rz * std::cos(theta) * depth);
+        },
+        [&](int, int j) { return j == 0 ? liningPart : conePart; });
+    model.solids.push_back(cone);
+
+    // The fur band: a thick bumpy roll around the cone's foot (its inner side hidden in it).
+    const std::vector<Vec2> section = {
+        {0.96, -0.004}, {1.09, -0.010}, {1.15, 0.010}, {1.10, 0.031}, {0.97, 0.035}};
+    const int furAround = 36;
+    Solid fur = gridSolid(
+        furAround, static_cast<int>(section.size()), true, true,
+        [&](int i, int j) {
+            const Vec2& s = section[static_cast<std::size_t>(j)];
+            const bool outside = j >= 1 && j <= 3;
+            const double r = s.x() * (outside ? 1.0 + 0.035 * hashNoise(i, j, 23) : 1.0);
+            const double y = s.y() + (outside ? 0.002 * hashNoise(i, j, 29) : 0.0);
+            return around(2.0 * kPi * i / furAround, r, y, a, b);
+        },
+        [furPart](int, int) { return furPart; });
+    fur.creaseDegrees = 180.0;
+    model.solids.push_back(fur);
+
+    model.solids.push_back(
+        pompom(line.back() + Vec3(-0.004, -0.010, 0.0), 0.025, 12, 7, 0.10, 31, pompomPart));
+
+    placeHat(model, -4.0, 0.0, -0.002, 0.0);
     return model;
 }
 
