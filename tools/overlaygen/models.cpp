@@ -614,9 +614,9 @@ Model buildRainHat()
 
 std::vector<Model> buildAllModels()
 {
-    return {buildGlasses(),  buildSunglasses(),  buildTopHat(),  buildGraduationCap(),
-            buildPartyHat(), buildSunHat(),      buildRainHat(), buildMoustache(),
-            buildGoatee(),   buildBirthdayHat(), buildSantaHat()};
+    return {buildGlasses(),  buildSunglasses(),  buildTopHat(),   buildGraduationCap(),
+            buildPartyHat(), buildSunHat(),      buildRainHat(),  buildMoustache(),
+            buildGoatee(),   buildBirthdayHat(), buildSantaHat(), buildWinterHat()};
 }
 
 }  // namespace overlaygen

@@ -39,10 +39,11 @@ Model buildRainHat();
 /// Face hair that follows the fitted face's animation units (face_hair.cpp).
 Model buildMoustache();
 Model buildGoatee();
-/// Hats of the calendar and the weather (seasonal_hats.cpp): a birthday crown with candles and
-/// a Santa hat.
+/// Hats of the calendar and the weather (seasonal_hats.cpp): a birthday crown with candles, a
+/// Santa hat and a knitted winter beanie.
 Model buildBirthdayHat();
 Model buildSantaHat();
+Model buildWinterHat();
 
 /// All of them, in catalogue order.
 std::vector<Model> buildAllModels();

@@ -1,6 +1,6 @@
 // Seasonal hats for the mirror's calendar and weather: a golden birthday crown with candles (a
-// person's birthday) and a Santa hat (Christmas). Built like the other hats (models.cpp): closed
-// solids in a hat frame, placed on the head by placeHat().
+// person's birthday), a Santa hat (Christmas) and a knitted winter beanie (snow). Built like the
+// other hats (models.cpp): closed solids in a hat frame, placed on the head by placeHat().
 
 #include "hat_building.hpp"
 #include "models.hpp"
@@ -165,6 +165,65 @@ Model buildSantaHat()
         pompom(line.back() + Vec3(-0.004, -0.010, 0.0), 0.025, 12, 7, 0.10, 31, pompomPart));
 
     placeHat(model, -4.0, 0.0, -0.002, 0.0);
+    return model;
+}
+
+Model buildWinterHat()
+{
+    Model model = hatModel("winter_hat",
+                           "winter hat: knitted beanie, ribbed folded cuff, two cream stripes, "
+                           "pompom");
+    const int wool = model.addMaterial("wool", {0.10, 0.33, 0.56, 1.0}, 0.0);
+    const int cream = model.addMaterial("wool_cream", {0.94, 0.90, 0.80, 1.0}, 0.0);
+    const int domeBlue = model.addPart("dome", wool, "dome");
+    const int domeCream = model.addPart("stripes", cream, "dome");
+    const int cuffPart = model.addPart("cuff", wool);
+    const int pompomPart = model.addPart("pompom", cream);
+
+    // The dome hugs the head, smooth (its ribs would be facets at 32 columns); the cuff is ribbed.
+    const double a = 0.085, b = 0.104, h = 0.104, domeFoot = 0.026;
+    const int segments = 32, rows = 7;
+    std::vector<Vec2> profile = {{0.0, -0.002}, {0.985, -0.002}};
+    for (int k = 0; k <= rows; ++k) {
+        const double phi = 0.5 * kPi * k / rows;
+        const double e = 2.2;
+        profile.emplace_back(k == rows ? 0.0 : std::pow(std::cos(phi), 2.0 / e),
+                             domeFoot + (h - domeFoot) * std::pow(std::sin(phi), 2.0 / e));
+    }
+    const int n = static_cast<int>(profile.size());
+    Solid dome = gridSolid(
+        segments, n, true, false,
+        [&](int i, int j) {
+            const Vec2& p = profile[static_cast<std::size_t>(j)];
+            return around(2.0 * kPi * i / segments, p.x(), p.y(), a, b);
+        },
+        // Quad rows: 0 bottom, 1 inside the cuff, 2.. the dome from its foot; rows 3 and 5
+        // are the cream stripes.
+        [&](int, int j) { return j == 3 || j == 5 ? domeCream : domeBlue; });
+    dome.creaseDegrees = 60.0;
+    model.solids.push_back(dome);
+
+    // The folded cuff: a thick ring, ribbed by 20 ribs (alternate columns out and in; faces of
+    // neighbouring columns meet at ~20 degrees and keep their own normals, so the per-vertex
+    // light shows the ribs as stripes).
+    const std::vector<Vec2> section = {
+        {0.975, -0.012}, {1.055, -0.013}, {1.075, 0.026}, {1.0, 0.034}};
+    const int cuffAround = 40;
+    Solid cuff = gridSolid(
+        cuffAround, static_cast<int>(section.size()), true, true,
+        [&](int i, int j) {
+            const Vec2& s = section[static_cast<std::size_t>(j)];
+            const double rib = (j == 1 || j == 2) ? 1.0 + (i % 2 == 0 ? 0.018 : -0.014) : 1.0;
+            return around(2.0 * kPi * i / cuffAround, s.x() * rib, s.y(), a, b);
+        },
+        [cuffPart](int, int) { return cuffPart; });
+    cuff.creaseDegrees = 12.0;
+    model.solids.push_back(cuff);
+
+    model.solids.push_back(
+        pompom(Vec3(0.0, h + 0.020, -0.004), 0.028, 12, 7, 0.12, 37, pompomPart));
+
+    placeHat(model, -5.0, 0.0, -0.013, 0.0);
     return model;
 }
 
