@@ -1,5 +1,7 @@
 #include "models.hpp"
 
+#include "hat_building.hpp"
+
 #include <Eigen/Geometry>
 #include <cmath>
 #include <functional>
@@ -182,6 +184,10 @@ Solid brimSolid(const Brim& brim, int segments, int topSteps, int bottomSteps, i
         [part](int, int) { return part; });
 }
 
+}  // namespace
+
+// Hat building steps (hat_building.hpp).
+
 /// Moves hat-frame solids onto the head: tilt about x (negative: front up, back down), about z
 /// (sideways), band centre at (0, hatBaseY + lift, head centre z + back), origin on head_top.
 void placeHat(Model& model, double tiltXDegrees, double tiltZDegrees, double lift, double back)
@@ -239,7 +245,24 @@ std::vector<Vec2> bandSection(double height, double outside, double topLean)
     return {{outside, 0.001}, {outside * topLean, height}, {0.97, 0.5 * height}};
 }
 
-}  // namespace
+Solid pompom(const Vec3& centre, double radius, int around, int rows, double fluff, int seed,
+             int part)
+{
+    Solid ball = gridSolid(
+        around, rows + 1, true, false,
+        [&](int i, int j) {
+            const double phi = kPi * j / rows - 0.5 * kPi;
+            const double theta = 2.0 * kPi * i / around;
+            const bool pole = j == 0 || j == rows;
+            const double r = radius * (1.0 + (pole ? 0.0 : fluff * hashNoise(i, j, seed)));
+            return Vec3(centre.x() + r * std::cos(phi) * std::sin(theta),
+                        centre.y() + r * std::sin(phi),
+                        centre.z() + r * std::cos(phi) * std::cos(theta));
+        },
+        [part](int, int) { return part; });
+    ball.creaseDegrees = 180.0;  // soft lumps, not crumpled foil
+    return ball;
+}
 
 // -------------------------------------------------------------------------------------------------
 
@@ -443,21 +466,8 @@ Model buildPartyHat()
     model.solids.push_back(cone);
 
     // Pompom: a ball with a fluffy, randomly bumpy surface.
-    const int ballAround = 14, ballRows = 8;
-    const double ball = 0.019;
-    Solid pompom = gridSolid(
-        ballAround, ballRows + 1, true, false,
-        [&](int i, int j) {
-            const double phi = kPi * j / ballRows - 0.5 * kPi;
-            const double theta = 2.0 * kPi * i / ballAround;
-            const bool pole = j == 0 || j == ballRows;
-            const double r = ball * (1.0 + (pole ? 0.0 : 0.09 * hashNoise(i, j, 7)));
-            return Vec3(r * std::cos(phi) * std::sin(theta), height - 0.004 + r * std::sin(phi),
-                        r * std::cos(phi) * std::cos(theta));
-        },
-        [pompomPart](int, int) { return pompomPart; });
-    pompom.creaseDegrees = 180.0;  // soft lumps, not crumpled foil
-    model.solids.push_back(pompom);
+    model.solids.push_back(
+        pompom(Vec3(0.0, height - 0.004, 0.0), 0.019, 14, 8, 0.09, 7, pompomPart));
 
     // Ruffled trim around the base: a tube whose radius waves around the cone.
     std::vector<Vec3> ring;
@@ -604,9 +614,9 @@ Model buildRainHat()
 
 std::vector<Model> buildAllModels()
 {
-    return {buildGlasses(),       buildSunglasses(), buildTopHat(),
-            buildGraduationCap(), buildPartyHat(),   buildSunHat(),
-            buildRainHat(),       buildMoustache(),  buildGoatee()};
+    return {buildGlasses(),  buildSunglasses(),  buildTopHat(),   buildGraduationCap(),
+            buildPartyHat(), buildSunHat(),      buildRainHat(),  buildMoustache(),
+            buildGoatee(),   buildBirthdayHat(), buildSantaHat(), buildWinterHat()};
 }
 
 }  // namespace overlaygen

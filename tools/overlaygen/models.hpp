@@ -1,5 +1,5 @@
 #pragma once
-// The project's overlay models: glasses, sunglasses and five hats, built procedurally.
+// The project's overlay models: glasses, sunglasses, hats and face hair, built procedurally.
 
 #include "model.hpp"
 
@@ -39,6 +39,11 @@ Model buildRainHat();
 /// Face hair that follows the fitted face's animation units (face_hair.cpp).
 Model buildMoustache();
 Model buildGoatee();
+/// Hats of the calendar and the weather (seasonal_hats.cpp): a birthday crown with candles, a
+/// Santa hat and a knitted winter beanie.
+Model buildBirthdayHat();
+Model buildSantaHat();
+Model buildWinterHat();
 
 /// All of them, in catalogue order.
 std::vector<Model> buildAllModels();

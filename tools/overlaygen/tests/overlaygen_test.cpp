@@ -257,8 +257,20 @@ TEST_P(EveryModel, FitsTheCataloguesHead)
     }
 }
 
+/// The hats and glasses (the face hair, kind "other", sits on the face, not over the head).
+std::vector<int> hatsAndGlasses()
+{
+    std::vector<int> indices;
+    const std::vector<Model> all = overlaygen::buildAllModels();
+    for (std::size_t k = 0; k < all.size(); ++k)
+        if (all[k].kind != "other")
+            indices.push_back(static_cast<int>(k));
+    return indices;
+}
+
 INSTANTIATE_TEST_SUITE_P(
-    Models, EveryModel, ::testing::Range(0, 7), [](const ::testing::TestParamInfo<int>& param) {
+    Models, EveryModel, ::testing::ValuesIn(hatsAndGlasses()),
+    [](const ::testing::TestParamInfo<int>& param) {
         return overlaygen::buildAllModels()[static_cast<std::size_t>(param.param)].name;
     });
 
