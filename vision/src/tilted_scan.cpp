@@ -26,6 +26,11 @@ constexpr float kTrackMotionReach = 1.5f;
 /// Tilted scans cost as much as upright ones per window and there are two angles: only
 /// windows (and cells) this full of motion, as a moving face's box is (about 0.7 on average).
 constexpr float kTiltMinMaskFraction = 0.4f;
+/// A hit's box may reach beyond the image by this fraction of its side: facegen's face boxes
+/// are the detector's box, and the face it holds is in view about as soon as the box is within
+/// this of the edge (facegen seed 7's `enter-leave`: a face tilted -19 degrees coming in at the
+/// top was in view, unshown, for three frames while its box still reached 3-7 px above it).
+constexpr float kEdgeSlack = 0.12f;
 
 /// The rotated image of a w x h image, turned by `degrees`, fits in this box (plus a margin).
 Size rotatedCanvas(Size s, float degrees) noexcept
@@ -223,13 +228,16 @@ void TiltedScan::collectHits() noexcept
         const float v = static_cast<float>(b.y) + 0.5f * static_cast<float>(b.height) - r.hh;
         const float x = centre_.x + r.c * u - r.n * v;
         const float y = centre_.y + r.n * u + r.c * v;
-        // Only faces wholly in view: the turned region repeats the image's border pixels, and
-        // the upright scan finds a face entering at an edge once it is in (its box and roll
-        // from a part of a face are poor anyway).
+        // Only faces (nearly) wholly in view: the turned region repeats the image's border
+        // pixels, and a box mostly beyond them is of a part of a face (its box and roll poor).
+        // A face coming in tilted is taken while the detector's box still reaches a little
+        // beyond the edge (the box is larger than the face, which is then in view or nearly):
+        // waiting until the whole box is in lets the face be in view unshown for frames.
         const int side = std::max(b.width, b.height);
         const float half = 0.5f * static_cast<float>(side);
-        if (x - half < 0.f || y - half < 0.f || x + half > static_cast<float>(s.width) ||
-            y + half > static_cast<float>(s.height))
+        const float out = kEdgeSlack * static_cast<float>(side);
+        if (x - half < -out || y - half < -out || x + half > static_cast<float>(s.width) + out ||
+            y + half > static_cast<float>(s.height) + out)
             continue;
         hitRolls_[static_cast<std::size_t>(count_)] = angle_;
         hits_[static_cast<std::size_t>(count_++)] = {static_cast<int>(x - half + 0.5f),

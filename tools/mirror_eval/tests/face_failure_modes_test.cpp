@@ -133,6 +133,17 @@ TEST(FaceFailureModes, PrintsOnAShakingCameraAreNotShown)
 // The ways a moving face wholly in view went unshown for frames (recall), each the frames around
 // the misses of one facegen scene.
 
+// A face tilted -19 degrees coming in at the top was in view, unshown, for three frames (91-93):
+// the tilted scan's hit was thrown away while the detector's box (larger than the face) still
+// reached a few pixels above the image. A hit's box may now reach beyond the edge by 12% of its
+// side (TiltedScan).
+TEST(FaceFailureModes, AFaceComingInTiltedAtTheTopIsShownAsItComesIntoView)
+{
+    const Score s = run("enter-leave", 7, 0, 100);
+    EXPECT_EQ(s.falsePositives, 0) << "frames" << s.log;
+    EXPECT_LE(s.missed, 1);
+}
+
 // A face found at a cold start turning in place (rolling a degree a frame, its centre still) was
 // shown only after its roll had turned 4 degrees, at frame 6. The image's symmetry is now asked
 // after every 2 degrees of tracked turn (StaticFaceRule), and it was shown at frame 3.
