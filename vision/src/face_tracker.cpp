@@ -241,7 +241,8 @@ void FaceTracker::Impl::detectInSearchMask(const ConstImageView& mask) noexcept
 {
     windows += search.scan({image(), mask, motion, live(), frameIndex});
     // Beyond fig. 89: the moving regions no track covers, turned, with what the budget left.
-    windows += tilted.run({image(), search.mask(), search.maskIntegral(), live()}, tiltBudget());
+    windows += tilted.run({image(), search.mask(), search.maskIntegral(), live(), search.wasCold()},
+                          tiltBudget());
 }
 
 long FaceTracker::Impl::tiltBudget() const noexcept

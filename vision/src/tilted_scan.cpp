@@ -26,6 +26,12 @@ constexpr float kTrackMotionReach = 1.5f;
 /// Tilted scans cost as much as upright ones per window and there are two angles: only
 /// windows (and cells) this full of motion, as a moving face's box is (about 0.7 on average).
 constexpr float kTiltMinMaskFraction = 0.4f;
+/// A cold start's scans (the whole image, once) also turn by +- this angle, the upright
+/// cascade's reach, between upright and tiltScanDegrees: the cascade answers a face at some
+/// angles and not at others near them, and a face it misses in all three looks of a cold start
+/// waits until its own roll brings it into one (facegen seed 7's `four`: an upright face found
+/// only at about 15 degrees, unshown for its first 15 frames).
+constexpr float kColdMidDegrees = 15.f;
 /// A hit's box may reach beyond the image by this fraction of its side: facegen's face boxes
 /// are the detector's box, and the face it holds is in view about as soon as the box is within
 /// this of the edge (facegen seed 7's `enter-leave`: a face tilted -19 degrees coming in at the
@@ -63,7 +69,7 @@ TiltedScan::TiltedScan(const HaarCascade& cascade, const FaceTrackerOptions& opt
     maskIntegral_ = IntegralImage({kMaskSide, kMaskSide});
     // Both angles may complete in one frame.
     const auto perScan = static_cast<std::size_t>(std::max(1, options.detector.maxFaces));
-    hits_.resize(2 * perScan);
+    hits_.resize(4 * perScan);  // a cold start's four angles
     hitRolls_.resize(hits_.size());
 }
 
@@ -90,10 +96,13 @@ long TiltedScan::run(const Frame& frame, long budget) noexcept
     done_ = false;
     if (!detector_)
         return 0;
-    // One angle after the other while the budget lasts (both in a frame when it allows).
+    // One angle after the other while the budget lasts (both in a frame when it allows; a cold
+    // start's whole-image scans also at +-kColdMidDegrees).
     long total = 0;
-    for (int k = 0; k < 2 && budget > 0; ++k) {
+    const int scans = frame.coldStart && options_.tiltScanDegrees > kColdMidDegrees + 5.f ? 4 : 2;
+    for (int k = 0; k < scans && budget > 0; ++k) {
         const bool unlimited = budget == kUnlimited;
+        magnitude_ = k < 2 ? options_.tiltScanDegrees : kColdMidDegrees;
         const long used = step(frame, unlimited ? 0 : budget);
         total += used;
         if (active_ || used == 0)
@@ -143,7 +152,7 @@ bool TiltedScan::chooseRegion(const Frame& frame) noexcept
     const float margin = 4.f + 0.15f * static_cast<float>(std::max(x1 - x0, y1 - y0));
     const float bw = static_cast<float>(x1 - x0) + 2.f * margin;
     const float bh = static_cast<float>(y1 - y0) + 2.f * margin;
-    angle_ = nextSign_ * options_.tiltScanDegrees;
+    angle_ = nextSign_ * magnitude_;
     nextSign_ = -nextSign_;
     const float c = std::fabs(std::cos(toRadians(angle_)));
     const float n = std::fabs(std::sin(toRadians(angle_)));

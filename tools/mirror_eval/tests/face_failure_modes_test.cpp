@@ -133,6 +133,17 @@ TEST(FaceFailureModes, PrintsOnAShakingCameraAreNotShown)
 // The ways a moving face wholly in view went unshown for frames (recall), each the frames around
 // the misses of one facegen scene.
 
+// An upright face the cascade answers only when turned by about 15 degrees: the cold start's
+// three looks (upright, +-25) missed it, and it was unshown for its first 15 frames (0-14), until
+// its own roll brought it into the +25 scan's reach. A cold start's tilted scans now also turn
+// by +-15 (TiltedScan).
+TEST(FaceFailureModes, AColdStartFindsAFaceTheCascadeAnswersOnlyAtFifteenDegrees)
+{
+    const Score s = run("four", 7, 0, 20);
+    EXPECT_EQ(s.falsePositives, 0) << "frames" << s.log;
+    EXPECT_EQ(s.missed, 0);
+}
+
 // A face tilted -19 degrees coming in at the top was in view, unshown, for three frames (91-93):
 // the tilted scan's hit was thrown away while the detector's box (larger than the face) still
 // reached a few pixels above the image. A hit's box may now reach beyond the edge by 12% of its
