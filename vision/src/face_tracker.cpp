@@ -386,6 +386,8 @@ void FaceTracker::Impl::confirmOrDiscard() noexcept
 bool FaceTracker::Impl::keeps(Track& t) noexcept
 {
     const bool seen = t.seen;
+    if (seen)
+        t.seenSize = t.face.size;
     if (t.face.age > 0) {  // a new track's detection is its first hit already
         if (seen) {
             ++t.face.hits;

@@ -39,8 +39,9 @@ struct Score {
 };
 
 /// Frames [start, start + frames) of facegen's `scenario` (its 300-frame timeline) from a cold
-/// start at `start`, camera shake `shakePx`.
-Score run(const char* scenario, std::uint32_t seed, int start, int frames, double shakePx = 0.0)
+/// start at `start`, camera shake `shakePx`, scored from frame `scoreFrom` on.
+Score run(const char* scenario, std::uint32_t seed, int start, int frames, double shakePx = 0.0,
+          int scoreFrom = 0)
 {
     facegen::GenerateOptions o;
     o.scenario = scenario;
@@ -72,6 +73,8 @@ Score run(const char* scenario, std::uint32_t seed, int start, int frames, doubl
             truth.push_back(mirror_eval::squareAbout(
                 {static_cast<float>(t.cx), static_cast<float>(t.cy)}, static_cast<float>(t.size)));
         const mirror_eval::Pairing p = mirror_eval::pairByIou(shown, truth, 0.5f);
+        if (k < scoreFrom)
+            continue;
         for (std::size_t c = 0; c < shown.size(); ++c) {
             const int ti = p.truthOfCandidate[c];
             bool partly = false;  // a face coming in or going out: neither true nor false
@@ -163,4 +166,18 @@ TEST(FaceFailureModes, AFaceTurningInPlaceIsShownWithinThreeFramesOfAColdStart)
     const Score s = run("rotate", 42, 0, 12);
     EXPECT_EQ(s.falsePositives, 0) << "frames" << s.log;
     EXPECT_LE(s.missed, 1);
+}
+
+// Two faces crossing pulled the corners of the upper one's box apart: the similarity fit grew it
+// from 125 to 280 px over 30 frames (66-96) while the cascade missed it, and its corners, moving
+// together, held it for the whole occluded grace: a false face, and the face under it hidden
+// from the scan (excluded as tracked). A missed track is now held by its corners only while its
+// box is within a quarter of the size it was last seen at (CornerFlow): it goes after the usual
+// grace, and the face is found again. (The scene's other false face, frames 30-53, a tilted
+// hit below a head, is not yet fixed: docs/face-evaluation.md.)
+TEST(FaceFailureModes, ABoxGrownByCrossingFacesIsNotHeldByItsCorners)
+{
+    const Score s = run("two", 13, 0, 100, 0.0, 60);
+    EXPECT_LE(s.falsePositives, 7) << "frames" << s.log;  // graceFrames + 1 at most
+    EXPECT_LE(s.missed, 16);
 }
