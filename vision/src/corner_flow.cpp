@@ -13,6 +13,11 @@ namespace {
 /// Fraction of a track's corners that must survive a flow step for the face to count as held
 /// by them (the longer grace of FaceTrackerOptions::occludedGraceFrames).
 constexpr float kHeldFraction = 0.8f;
+/// A track missed by the cascade is held by its corners only while its box is within this factor
+/// of the size it was last seen at (facegen seed 13's `two`: a box the crossing faces' corners
+/// grew from 125 to 280 px was held, off any face, for 30 frames, and hid the face under it from
+/// the scan).
+constexpr float kHeldGrowth = 1.25f;
 
 /// Whether `p` lies in the face's box turned by its roll. Corners are found in the inner part
 /// of the box (find()), and the face's own motion never carries them out of it: one outside is
@@ -131,6 +136,12 @@ void CornerFlow::follow(Track& t, StaticFaceRule& rule) noexcept
     tellRule(t, rule, model, m, survived);
     t.face.centre = model.apply(t.face.centre);
     move(t, model, m);
+    // A covered face keeps its size: corners that have scaled the box far from the size it was
+    // last seen at follow something else (two faces crossing pull a box's corners apart, and its
+    // fit calls that growth), and the cascade's misses then mean the face is not there.
+    if (t.seenSize > 0.f &&
+        (t.face.size > kHeldGrowth * t.seenSize || t.face.size * kHeldGrowth < t.seenSize))
+        t.heldByCorners = false;
     t.face.confidence = std::min(1.f, survived);
 }
 

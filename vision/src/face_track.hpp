@@ -24,6 +24,7 @@ struct Track {
     /// The last flow step kept most of the corners on one rigid motion: the face is still
     /// there, whatever the cascade says (a hand or another head over part of it, a turned head).
     bool heldByCorners = false;
+    float seenSize = 0.f;  ///< the box's size when the face was last detected or verified
     FaceMotion motion;  ///< StaticFaceRule's record of how the face moved
 };
 

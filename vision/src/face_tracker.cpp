@@ -241,7 +241,8 @@ void FaceTracker::Impl::detectInSearchMask(const ConstImageView& mask) noexcept
 {
     windows += search.scan({image(), mask, motion, live(), frameIndex});
     // Beyond fig. 89: the moving regions no track covers, turned, with what the budget left.
-    windows += tilted.run({image(), search.mask(), search.maskIntegral(), live()}, tiltBudget());
+    windows += tilted.run({image(), search.mask(), search.maskIntegral(), live(), search.wasCold()},
+                          tiltBudget());
 }
 
 long FaceTracker::Impl::tiltBudget() const noexcept
@@ -385,6 +386,8 @@ void FaceTracker::Impl::confirmOrDiscard() noexcept
 bool FaceTracker::Impl::keeps(Track& t) noexcept
 {
     const bool seen = t.seen;
+    if (seen)
+        t.seenSize = t.face.size;
     if (t.face.age > 0) {  // a new track's detection is its first hit already
         if (seen) {
             ++t.face.hits;

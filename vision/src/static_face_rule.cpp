@@ -39,8 +39,14 @@ constexpr float kMovedAsOneFraction = 0.75f;
 /// by far from the corners that measured it (facegen --shake 3: up to about a quarter).
 constexpr float kViewError = 0.5f;
 /// A Tentative face whose tracked roll turned this far since it started is checked for turning
-/// in the image (and again after each further step as far).
-constexpr float kTurnCheckDegrees = 4.f;
+/// in the image (and again after each further step as far): each check is one estimate of the
+/// image's roll, and a face turning in place a degree a frame waited four frames for the first
+/// at 4 degrees (facegen seed 42's `rotate`: shown at frame 6 of a cold start).
+constexpr float kTurnCheckDegrees = 2.f;
+/// The image's roll must have turned the same way by this much for the turn to count: what it
+/// was asked when the checks came every 4 degrees (a photo's tracked turn is the corners' noise,
+/// and the image must not agree with it more easily for being asked more often).
+constexpr float kTurnSeenDegrees = 2.f;
 
 }  // namespace
 
@@ -155,7 +161,7 @@ bool StaticFaceRule::turnedInImage(FaceMotion& m, const TrackedFace& face) noexc
     if (r.confidence < kMinImageRollConfidence)
         return false;
     const float seen = r.rollDegrees - m.imageRollAtStart;
-    return seen * m.turn > 0.f && std::fabs(seen) >= 0.5f * kTurnCheckDegrees;
+    return seen * m.turn > 0.f && std::fabs(seen) >= kTurnSeenDegrees;
 }
 
 StaticFaceRule::Verdict StaticFaceRule::observe(FaceMotion& m, const TrackedFace& face, bool seen,

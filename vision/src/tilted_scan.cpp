@@ -26,6 +26,17 @@ constexpr float kTrackMotionReach = 1.5f;
 /// Tilted scans cost as much as upright ones per window and there are two angles: only
 /// windows (and cells) this full of motion, as a moving face's box is (about 0.7 on average).
 constexpr float kTiltMinMaskFraction = 0.4f;
+/// A cold start's scans (the whole image, once) also turn by +- this angle, the upright
+/// cascade's reach, between upright and tiltScanDegrees: the cascade answers a face at some
+/// angles and not at others near them, and a face it misses in all three looks of a cold start
+/// waits until its own roll brings it into one (facegen seed 7's `four`: an upright face found
+/// only at about 15 degrees, unshown for its first 15 frames).
+constexpr float kColdMidDegrees = 15.f;
+/// A hit's box may reach beyond the image by this fraction of its side: facegen's face boxes
+/// are the detector's box, and the face it holds is in view about as soon as the box is within
+/// this of the edge (facegen seed 7's `enter-leave`: a face tilted -19 degrees coming in at the
+/// top was in view, unshown, for three frames while its box still reached 3-7 px above it).
+constexpr float kEdgeSlack = 0.12f;
 
 /// The rotated image of a w x h image, turned by `degrees`, fits in this box (plus a margin).
 Size rotatedCanvas(Size s, float degrees) noexcept
@@ -58,7 +69,7 @@ TiltedScan::TiltedScan(const HaarCascade& cascade, const FaceTrackerOptions& opt
     maskIntegral_ = IntegralImage({kMaskSide, kMaskSide});
     // Both angles may complete in one frame.
     const auto perScan = static_cast<std::size_t>(std::max(1, options.detector.maxFaces));
-    hits_.resize(2 * perScan);
+    hits_.resize(4 * perScan);  // a cold start's four angles
     hitRolls_.resize(hits_.size());
 }
 
@@ -85,10 +96,13 @@ long TiltedScan::run(const Frame& frame, long budget) noexcept
     done_ = false;
     if (!detector_)
         return 0;
-    // One angle after the other while the budget lasts (both in a frame when it allows).
+    // One angle after the other while the budget lasts (both in a frame when it allows; a cold
+    // start's whole-image scans also at +-kColdMidDegrees).
     long total = 0;
-    for (int k = 0; k < 2 && budget > 0; ++k) {
+    const int scans = frame.coldStart && options_.tiltScanDegrees > kColdMidDegrees + 5.f ? 4 : 2;
+    for (int k = 0; k < scans && budget > 0; ++k) {
         const bool unlimited = budget == kUnlimited;
+        magnitude_ = k < 2 ? options_.tiltScanDegrees : kColdMidDegrees;
         const long used = step(frame, unlimited ? 0 : budget);
         total += used;
         if (active_ || used == 0)
@@ -138,7 +152,7 @@ bool TiltedScan::chooseRegion(const Frame& frame) noexcept
     const float margin = 4.f + 0.15f * static_cast<float>(std::max(x1 - x0, y1 - y0));
     const float bw = static_cast<float>(x1 - x0) + 2.f * margin;
     const float bh = static_cast<float>(y1 - y0) + 2.f * margin;
-    angle_ = nextSign_ * options_.tiltScanDegrees;
+    angle_ = nextSign_ * magnitude_;
     nextSign_ = -nextSign_;
     const float c = std::fabs(std::cos(toRadians(angle_)));
     const float n = std::fabs(std::sin(toRadians(angle_)));
@@ -223,13 +237,16 @@ void TiltedScan::collectHits() noexcept
         const float v = static_cast<float>(b.y) + 0.5f * static_cast<float>(b.height) - r.hh;
         const float x = centre_.x + r.c * u - r.n * v;
         const float y = centre_.y + r.n * u + r.c * v;
-        // Only faces wholly in view: the turned region repeats the image's border pixels, and
-        // the upright scan finds a face entering at an edge once it is in (its box and roll
-        // from a part of a face are poor anyway).
+        // Only faces (nearly) wholly in view: the turned region repeats the image's border
+        // pixels, and a box mostly beyond them is of a part of a face (its box and roll poor).
+        // A face coming in tilted is taken while the detector's box still reaches a little
+        // beyond the edge (the box is larger than the face, which is then in view or nearly):
+        // waiting until the whole box is in lets the face be in view unshown for frames.
         const int side = std::max(b.width, b.height);
         const float half = 0.5f * static_cast<float>(side);
-        if (x - half < 0.f || y - half < 0.f || x + half > static_cast<float>(s.width) ||
-            y + half > static_cast<float>(s.height))
+        const float out = kEdgeSlack * static_cast<float>(side);
+        if (x - half < -out || y - half < -out || x + half > static_cast<float>(s.width) + out ||
+            y + half > static_cast<float>(s.height) + out)
             continue;
         hitRolls_[static_cast<std::size_t>(count_)] = angle_;
         hits_[static_cast<std::size_t>(count_++)] = {static_cast<int>(x - half + 0.5f),

@@ -2,7 +2,8 @@
 // TiltedScan: FaceTracker's scan for faces that enter tilted beyond the upright cascade's reach
 // (about +-15 degrees). The moving regions no track covers are turned by +tiltScanDegrees and
 // -tiltScanDegrees (one angle per scan, alternating) and scanned upright there, within a window
-// budget; a scan may take several frames. Private to vision/src.
+// budget; a scan may take several frames. A cold start's scans (the whole image, in its frame)
+// also turn by +-15 degrees, between upright and the tilt. Private to vision/src.
 //
 // Use: construct with the tracker's options (off when tiltScanDegrees is 0); each frame call
 // run() after the upright scan; when completed(), hits() and hitRolls() hold the new faces (image
@@ -25,12 +26,14 @@ namespace vision {
 class TiltedScan {
 public:
     /// What a tilted scan looks at: the working image, the upright scan's mask (Gray8, 255 =
-    /// scannable) and its integral image, the live tracks.
+    /// scannable) and its integral image, the live tracks, and whether the upright scan was a
+    /// cold start's (the whole image in one frame; the tilted scans then also turn by +-15).
     struct Frame {
         ConstImageView gray;
         ConstImageView scanMask;
         const IntegralImage& scanMaskIntegral;
         std::span<const Track> tracks;
+        bool coldStart = false;
     };
 
     /// Allocates the detector and buffers (nothing when options.tiltScanDegrees is 0).
@@ -73,7 +76,8 @@ private:
     Point2f centre_{};      ///< image point at the region's centre
     Size size_{};           ///< region in the turned image (pixels as the image's)
     float angle_ = 0.f;     ///< this scan's angle
-    float nextSign_ = 1.f;  ///< the next scan turns by this sign times tiltScanDegrees
+    float nextSign_ = 1.f;  ///< the next scan turns by this sign times magnitude_
+    float magnitude_ = 0.f;  ///< the next scan's angle without its sign (run() sets it)
     std::array<Rect, kMaxTracks> excluded_{};
     std::vector<Rect> hits_;       ///< the last completed tilted scan's faces (image boxes)
     std::vector<float> hitRolls_;  ///< the angle of the scan that found each

@@ -1,7 +1,8 @@
-// The face pipeline on the ways it used to show a false or duplicate face, each on frames facegen
-// renders here from the shared photographs (nothing else is read from disk): the opening frames
-// of facegen scenarios whose seeds made the tracker fail, from a cold start, with the shipped
-// window budget, scored as `mirror-eval track` scores them (METHOD.md §3, "Integration").
+// The face pipeline on the ways it used to show a false or duplicate face, or leave a face in
+// view unshown, each on frames facegen renders here from the shared photographs (nothing else is
+// read from disk): the opening frames of facegen scenarios whose seeds made the tracker fail,
+// from a cold start, with the shipped window budget, scored as `mirror-eval track` scores them
+// (METHOD.md §3, "Integration").
 
 #include "face_match.hpp"
 #include "sequence_writer.hpp"
@@ -38,8 +39,9 @@ struct Score {
 };
 
 /// Frames [start, start + frames) of facegen's `scenario` (its 300-frame timeline) from a cold
-/// start at `start`, camera shake `shakePx`.
-Score run(const char* scenario, std::uint32_t seed, int start, int frames, double shakePx = 0.0)
+/// start at `start`, camera shake `shakePx`, scored from frame `scoreFrom` on.
+Score run(const char* scenario, std::uint32_t seed, int start, int frames, double shakePx = 0.0,
+          int scoreFrom = 0)
 {
     facegen::GenerateOptions o;
     o.scenario = scenario;
@@ -71,6 +73,8 @@ Score run(const char* scenario, std::uint32_t seed, int start, int frames, doubl
             truth.push_back(mirror_eval::squareAbout(
                 {static_cast<float>(t.cx), static_cast<float>(t.cy)}, static_cast<float>(t.size)));
         const mirror_eval::Pairing p = mirror_eval::pairByIou(shown, truth, 0.5f);
+        if (k < scoreFrom)
+            continue;
         for (std::size_t c = 0; c < shown.size(); ++c) {
             const int ti = p.truthOfCandidate[c];
             bool partly = false;  // a face coming in or going out: neither true nor false
@@ -127,4 +131,53 @@ TEST(FaceFailureModes, PrintsOnAShakingCameraAreNotShown)
     const Score s = run("one", 1, 0, 40, 3.0);
     EXPECT_EQ(s.falsePositives, 0) << "frames" << s.log;
     EXPECT_GE(s.recall(), 0.97);
+}
+
+// The ways a moving face wholly in view went unshown for frames (recall), each the frames around
+// the misses of one facegen scene.
+
+// An upright face the cascade answers only when turned by about 15 degrees: the cold start's
+// three looks (upright, +-25) missed it, and it was unshown for its first 15 frames (0-14), until
+// its own roll brought it into the +25 scan's reach. A cold start's tilted scans now also turn
+// by +-15 (TiltedScan).
+TEST(FaceFailureModes, AColdStartFindsAFaceTheCascadeAnswersOnlyAtFifteenDegrees)
+{
+    const Score s = run("four", 7, 0, 20);
+    EXPECT_EQ(s.falsePositives, 0) << "frames" << s.log;
+    EXPECT_EQ(s.missed, 0);
+}
+
+// A face tilted -19 degrees coming in at the top was in view, unshown, for three frames (91-93):
+// the tilted scan's hit was thrown away while the detector's box (larger than the face) still
+// reached a few pixels above the image. A hit's box may now reach beyond the edge by 12% of its
+// side (TiltedScan).
+TEST(FaceFailureModes, AFaceComingInTiltedAtTheTopIsShownAsItComesIntoView)
+{
+    const Score s = run("enter-leave", 7, 0, 100);
+    EXPECT_EQ(s.falsePositives, 0) << "frames" << s.log;
+    EXPECT_LE(s.missed, 1);
+}
+
+// A face found at a cold start turning in place (rolling a degree a frame, its centre still) was
+// shown only after its roll had turned 4 degrees, at frame 6. The image's symmetry is now asked
+// after every 2 degrees of tracked turn (StaticFaceRule), and it was shown at frame 3.
+TEST(FaceFailureModes, AFaceTurningInPlaceIsShownWithinThreeFramesOfAColdStart)
+{
+    const Score s = run("rotate", 42, 0, 12);
+    EXPECT_EQ(s.falsePositives, 0) << "frames" << s.log;
+    EXPECT_LE(s.missed, 1);
+}
+
+// Two faces crossing pulled the corners of the upper one's box apart: the similarity fit grew it
+// from 125 to 280 px over 30 frames (66-96) while the cascade missed it, and its corners, moving
+// together, held it for the whole occluded grace: a false face, and the face under it hidden
+// from the scan (excluded as tracked). A missed track is now held by its corners only while its
+// box is within a quarter of the size it was last seen at (CornerFlow): it goes after the usual
+// grace, and the face is found again. (The scene's other false face, frames 30-53, a tilted
+// hit below a head, is not yet fixed: docs/face-evaluation.md.)
+TEST(FaceFailureModes, ABoxGrownByCrossingFacesIsNotHeldByItsCorners)
+{
+    const Score s = run("two", 13, 0, 100, 0.0, 60);
+    EXPECT_LE(s.falsePositives, 7) << "frames" << s.log;  // graceFrames + 1 at most
+    EXPECT_LE(s.missed, 16);
 }
