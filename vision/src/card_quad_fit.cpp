@@ -195,8 +195,15 @@ QuadFit fitQuad(const ConstImageView& rgb, const Quad& seed, const QuadJudge& ju
                 unfoundEdge = true;
         }
     }
-    if (judge.measured && carryHiddenEdge(*judge.measured, judge.frame, f.refinement))
-        f.raw = canonicalOrder(f.refinement.quad);
+    if (judge.measured && f.refinement.edgesFitted == 3) {
+        int k = 0;
+        while (f.refinement.fitted[k])
+            ++k;
+        if (carryHiddenEdge(*judge.measured, judge.frame, f.refinement)) {
+            f.raw = canonicalOrder(f.refinement.quad);
+            f.carried = k;
+        }
+    }
     // Plausibility: the beyond-the-dissertation lost-track test.
     f.area = quadArea(f.raw);
     f.aspect = aspectOf(f.raw);

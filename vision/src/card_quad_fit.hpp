@@ -47,9 +47,10 @@ struct QuadFit {
     EdgeRefinement refinement;  ///< the pass that gave `raw`
     float area = 0.f;
     float aspect = 1.f;
-    float inlierRatio = 0.f;                   ///< edge inliers per sample line
-    float shape = 1.f;                         ///< 0..1: likeness to the last quad seen whole
-    float fill = 0.f;                          ///< component pixels per quad pixel
+    float inlierRatio = 0.f;  ///< edge inliers per sample line
+    float shape = 1.f;        ///< 0..1: likeness to the last quad seen whole
+    float fill = 0.f;         ///< component pixels per quad pixel
+    int carried = -1;  ///< the edge without evidence carried with the card (carryHiddenEdge), or -1
     const char* why = "degenerate component";  ///< null when plausible
 };
 

@@ -129,6 +129,8 @@ float CardShapeModel::edgeGuide(unsigned missed) const noexcept
 
 namespace {
 
+constexpr float kMaxTurnMismatch = 0.05f;  // sine of about 3 degrees
+
 /// Well inside the frame: 8 px from its border.
 bool wellInView(Point2f p, Size frame) noexcept
 {
@@ -169,7 +171,6 @@ bool carriedEdge(const Quad& reference, Size frame, const EdgeRefinement& r, int
         return false;
     // A rigid motion in the image turns the fitted neighbours as it turns the measured edge; when
     // they turn otherwise the card turned in depth, and the similarity would misplace the edge.
-    constexpr float kMaxTurnMismatch = 0.05f;  // sine of about 3 degrees
     auto turnsWith = [&](int from, int to, const Line2f& fitted) {
         const Point2f p = then(from), q = then(to);
         const float ux = mr * (q.x - p.x) - mi * (q.y - p.y);
@@ -207,6 +208,15 @@ bool carryHiddenEdge(const Quad& reference, Size frame, EdgeRefinement& r) noexc
     r.quad[k] = p0;
     r.quad[(k + 1) % 4] = p1;
     return true;
+}
+
+float carriedEdgeSlack(const EdgeRefinement& r, int k) noexcept
+{
+    auto length = [&](int i) {
+        const Point2f a = r.quad[i], b = r.quad[(i + 1) % 4];
+        return std::hypot(b.x - a.x, b.y - a.y);
+    };
+    return 2.f * kMaxTurnMismatch * std::max(length((k + 1) % 4), length((k + 3) % 4));
 }
 
 }  // namespace vision

@@ -72,4 +72,10 @@ float quadDistance(const Quad& a, const Quad& b) noexcept;
 /// view is still the card's where it is in view (kept there, it would follow a hand's outline).
 bool carryHiddenEdge(const Quad& reference, Size frame, EdgeRefinement& r) noexcept;
 
+/// How far a corner of edge k carried by carryHiddenEdge may be from the card's: the carry takes
+/// the card as turning in the image within about 3 degrees of its measured edge, so a corner at
+/// the far end of a neighbour edge may be off by that turn over the neighbour's length, and by as
+/// much again along it (the similarity's scale is the measured edge's, foreshortened otherwise).
+float carriedEdgeSlack(const EdgeRefinement& r, int k) noexcept;
+
 }  // namespace vision

@@ -131,6 +131,35 @@ bool CardTracker::State::coarseQuad(Quad& out) noexcept
     return true;
 }
 
+namespace {
+
+/// Every edge of `r` either fitted to the image or with both ends in view: none is kept from its
+/// seed where it runs out of view (there a stale line, not the card's).
+bool inViewOrFitted(const EdgeRefinement& r, Size size) noexcept
+{
+    for (int i = 0; i < 4; ++i)
+        if (!r.fitted[i] && (nearBorder(r.quad[i], size) || nearBorder(r.quad[(i + 1) % 4], size)))
+            return false;
+    return true;
+}
+
+/// Every edge of `r` not fitted to the image lies farther than `margin` from the frame's border:
+/// it cuts the card in view (a hand), not where the border cuts it.
+bool unfittedWellInside(const EdgeRefinement& r, Size size, float margin) noexcept
+{
+    auto inside = [&](Point2f p) {
+        return p.x >= margin && p.y >= margin &&
+               p.x <= static_cast<float>(size.width - 1) - margin &&
+               p.y <= static_cast<float>(size.height - 1) - margin;
+    };
+    for (int i = 0; i < 4; ++i)
+        if (!r.fitted[i] && (!inside(r.quad[i]) || !inside(r.quad[(i + 1) % 4])))
+            return false;
+    return true;
+}
+
+}  // namespace
+
 /// Step 5 and the plausibility test, from the colour's coarse quad and, beyond the dissertation,
 /// from the quad the shape model predicts when the colour's is implausible or disagrees with it
 /// (an occluder cut the card, something of its colour joined it): the better of the two.
@@ -162,6 +191,26 @@ QuadFit CardTracker::State::fitCard(const ConstImageView& rgb, const Quad* coars
         quadDistance(best.raw, predicted) <= shape.tolerance())
         return best;
     const QuadFit alt = fitQuad(rgb, predicted, judge, shape.edgeGuide(missed));
+    // The colour's fit carried an edge under a hand with the card; a line the guided pass found
+    // for that edge away from where the card carried it is the hand's outline (it lies within
+    // the guide of where the edge is expected) farther than the carry can be off, not the card's
+    // edge.
+    if (coarse && !best.why && best.carried >= 0 && alt.refinement.fitted[best.carried] &&
+        alt.refinement.edgesFitted > best.refinement.edgesFitted &&
+        quadDistance(alt.raw, best.raw) >
+            std::max(shape.tolerance(), carriedEdgeSlack(best.refinement, best.carried))) {
+        return best;
+    }
+    // An edge of the colour's fit without evidence that could not be carried keeps the colour's
+    // hull there (cut by a hand over the corner): far from where the card is expected, with no
+    // more edges fitted than the guided fit, it is the hull's guess, not the card.
+    if (!alt.why && !best.why && best.carried < 0 && best.refinement.edgesFitted < 4 &&
+        alt.refinement.edgesFitted >= best.refinement.edgesFitted &&
+        inViewOrFitted(alt.refinement, size) &&
+        unfittedWellInside(best.refinement, size, shape.edgeGuide(missed)) &&
+        quadDistance(best.raw, predicted) > shape.edgeGuide(missed)) {
+        return alt;
+    }
     return betterFit(alt, best) ? alt : best;
 }
 
