@@ -1,0 +1,31 @@
+#pragma once
+// Mirrored training images for the appearance model (§5, dissertation 5.3.1, where the text is
+// silent). The training photographs of one studio share its light: IMM's come from the image's
+// right, and a mean appearance of them alone is darker on its left half by about two thirds of its
+// standard deviation. A face turned away from that light then looks nothing like the model, and
+// the fit of a face turned to its left (nose to the image's right) held on none of IMM's held-out
+// persons while half of those turned the other way held. Each training image is therefore also
+// used mirrored (the photograph flipped, its mesh flipped with every vertex taking its mirror
+// partner's place): the mean appearance becomes symmetric and the light from either side becomes
+// one of the appearance modes, which the fit projects out.
+
+#include "shape_synthesis.hpp"
+#include "vision/candide_mesh.hpp"
+
+#include <opencv2/core.hpp>
+#include <vector>
+
+namespace aam {
+
+/// Each vertex's mirror partner: of the vertices at (-x, y, z), the one the units move most nearly
+/// as its mirror image (so the inner lips, which share a place at rest, pair upper with upper).
+/// Throws std::invalid_argument (one line) when a vertex has none: the mesh is not symmetric.
+std::vector<int> mirrorPartners(const vision::CandideMesh& face);
+
+/// `shape` (the vertices in an image `width` pixels wide) as it lies in the mirrored image.
+Shape2d mirroredShape(const Shape2d& shape, const std::vector<int>& partners, int width);
+
+/// `grey` flipped left to right.
+cv::Mat mirroredImage(const cv::Mat& grey);
+
+}  // namespace aam
