@@ -35,7 +35,7 @@ enum class AamSampling : std::uint8_t {
 struct AamFitterOptions {
     /// K of eq. 80: the 3D term's weight, per vertex and squared mean-frame pixel, against the
     /// 2D term's squared residual in units of the mean appearance's standard deviation.
-    float constraintWeight = 2.f;
+    float constraintWeight = 0.5f;
     int maxIterations = 20;            ///< the cap on one fit's iterations (both phases)
     int maxSimilarityIterations = 10;  ///< a new face's first phase: q (and gain, bias) alone
     /// Converged when no vertex moved more than this (image pixels) and no angle more than
