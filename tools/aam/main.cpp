@@ -376,9 +376,8 @@ int main(int argc, char** argv)
         ->add_option("--appearance-variance", modelRequest.options.appearanceVariance,
                      "the variance fraction the appearance modes keep")
         ->capture_default_str();
-    bool unmirrored = false;
-    model->add_flag("--no-mirrored-appearance", unmirrored,
-                    "the appearance model from the training images alone, not also mirrored");
+    model->add_flag("--mirrored-appearance", modelRequest.options.mirroredAppearance,
+                    "each training image also mirrored in the appearance model");
     model->add_option("--picture", modelRequest.picture,
                       "a PNG of the mean appearance and its first modes");
     std::string modelFile;
@@ -387,7 +386,6 @@ int main(int argc, char** argv)
     inspect->add_option("--model", modelFile, "the model file")->required();
     if (const int code = tool_cli::parse(app, argc, argv); code >= 0)
         return code;
-    modelRequest.options.mirroredAppearance = !unmirrored;
     try {
         if (*model)
             return buildModelFile(modelRequest);

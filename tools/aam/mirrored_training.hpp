@@ -1,13 +1,12 @@
 #pragma once
 // Mirrored training images for the appearance model (§5, dissertation 5.3.1, where the text is
-// silent). The training photographs of one studio share its light: IMM's come from the image's
-// right, and a mean appearance of them alone is darker on its left half by about two thirds of its
-// standard deviation. A face turned away from that light then looks nothing like the model, and
-// the fit of a face turned to its left (nose to the image's right) held on none of IMM's held-out
-// persons while half of those turned the other way held. Each training image is therefore also
-// used mirrored (the photograph flipped, its mesh flipped with every vertex taking its mirror
-// partner's place): the mean appearance becomes symmetric and the light from either side becomes
-// one of the appearance modes, which the fit projects out.
+// silent; `aam-build model --mirrored-appearance`). The training photographs of one studio share
+// its light: IMM's come from the image's right, and a mean appearance of them alone is darker on
+// its left half by about two thirds of its standard deviation. Each training image also used
+// mirrored (the photograph flipped, its mesh flipped with every vertex taking its mirror partner's
+// place) makes the mean appearance symmetric and the light from either side one of the modes,
+// which the fit projects out. Not the default: docs/aam-model-format.md has what it gained and
+// lost.
 
 #include "shape_synthesis.hpp"
 #include "vision/candide_mesh.hpp"
