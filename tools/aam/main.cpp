@@ -376,6 +376,8 @@ int main(int argc, char** argv)
         ->add_option("--appearance-variance", modelRequest.options.appearanceVariance,
                      "the variance fraction the appearance modes keep")
         ->capture_default_str();
+    model->add_flag("--mirrored-appearance", modelRequest.options.mirroredAppearance,
+                    "each training image also mirrored in the appearance model");
     model->add_option("--picture", modelRequest.picture,
                       "a PNG of the mean appearance and its first modes");
     std::string modelFile;

@@ -4,6 +4,7 @@
 
 #include "annotation_files.hpp"
 #include "appearance_warp.hpp"
+#include "mirrored_training.hpp"
 #include "training_image.hpp"
 
 #include <algorithm>
@@ -73,8 +74,15 @@ BuiltModel buildModel(const vision::CandideMesh& face, const std::vector<FittedI
     built.shape = shapeModes(built.aligned, options.shapeVariance);
     built.frame = appearanceFrame(face, built.shape.mean, options.resolution);
     std::vector<Eigen::VectorXd> warped;
-    for (const FittedImage& image : training)
+    const std::vector<int> partners =
+        options.mirroredAppearance ? mirrorPartners(face) : std::vector<int>{};
+    for (const FittedImage& image : training) {
         warped.push_back(warpToFrame(image.grey, image.shape, face, built.frame));
+        if (options.mirroredAppearance)
+            warped.push_back(warpToFrame(mirroredImage(image.grey),
+                                         mirroredShape(image.shape, partners, image.grey.cols),
+                                         face, built.frame));
+    }
     built.appearance = appearanceModes(warped, options.appearanceVariance);
     return built;
 }

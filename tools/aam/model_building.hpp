@@ -27,6 +27,9 @@ struct ModelOptions {
     int resolution = 96;          ///< the appearance frame's width (docs/aam-model-format.md: why)
     double shapeVariance = 0.98;  ///< shape_modes.hpp
     double appearanceVariance = 0.95;  ///< docs/aam-model-format.md: why
+    /// Each training image also mirrored in the appearance model (mirrored_training.hpp; off:
+    /// docs/aam-model-format.md).
+    bool mirroredAppearance = false;
     SynthesisOptions synthesis;
 };
 
