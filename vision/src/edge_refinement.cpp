@@ -276,21 +276,8 @@ bool refineQuad(const ConstImageView& rgb, const Quad& quad, const EdgeRefinemen
         float t0 = options.endMargin, t1 = 1.f - options.endMargin;
         clipToFrame(a, ex, ey, static_cast<float>(rgb.width - 1),
                     static_cast<float>(rgb.height - 1), t0, t1);
-        const float minSpan = std::max(8.f, options.minEdgeSpan * len);
-        // An edge running out of view with little of it in view: the border, not a corner, ends
-        // it there, so no margin at that end, and at its corner in view only the band's (the
-        // margin is there to keep the walks off the neighbour edge).
-        if ((t1 - t0) * len < minSpan) {
-            const float corner = static_cast<float>(options.band + 2) / len;
-            float c0 = 0.f, c1 = 1.f;
-            clipToFrame(a, ex, ey, static_cast<float>(rgb.width - 1),
-                        static_cast<float>(rgb.height - 1), c0, c1);
-            if (c0 > 0.f || c1 < 1.f) {
-                t0 = c0 > 0.f ? c0 : corner;
-                t1 = c1 < 1.f ? c1 : 1.f - corner;
-            }
-        }
         // Too little of the edge in view to tell its direction: it keeps its input line.
+        const float minSpan = std::max(8.f, options.minEdgeSpan * len);
         if ((t1 - t0) * len < minSpan) {
             lineThrough(a, b, out.lines[e]);
             continue;
