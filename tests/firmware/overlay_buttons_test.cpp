@@ -6,6 +6,7 @@
 #include "firmware/device_factory.hpp"
 #include "firmware/frame_loop.hpp"
 #include "firmware/log.hpp"
+#include "overlay_loop_config.hpp"
 #include "preloaded_face_source.hpp"
 #include "test_paths.hpp"
 
@@ -55,20 +56,8 @@ private:
 
 firmware::Config testConfig(const std::string& name)
 {
-    firmware::Config config;
-    config.display.spec = "headless:" + testing_support::freshOutputDir(name);
-    config.display.width = 640;
-    config.display.height = 360;
-    config.display.snapshotEvery = 0;
-    config.card.enabled = false;
-    config.log.summaryIntervalS = 0;
-    config.overlay.fadeMs = 1;
-    config.overlay.initial =
-        "none";  // the first press of button 1 then puts on the first one  // fades are
-                 // OverlaySelection's tests; here: no wall-clock waits
-    config.state.dir = testing_support::binaryDir() + "/test-output/" + name + "_state";
-    config.days.dates.clear();  // no special day: on 24 December a face would start in santa_hat
-    return config;
+    // "none": the first press of button 1 then puts on the first overlay.
+    return overlayLoopConfig(name, "none");
 }
 
 TEST(OverlayButtons, PressesAndCommandsChangeWhatTheFaceWearsAndItIsKept)

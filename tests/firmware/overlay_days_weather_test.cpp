@@ -7,6 +7,7 @@
 #include "firmware/device_factory.hpp"
 #include "firmware/frame_loop.hpp"
 #include "firmware/log.hpp"
+#include "overlay_loop_config.hpp"
 #include "preloaded_face_source.hpp"
 #include "test_paths.hpp"
 
@@ -26,16 +27,7 @@ namespace {
 
 firmware::Config testConfig(const std::string& name)
 {
-    firmware::Config config;
-    config.display.spec = "headless:" + testing_support::freshOutputDir(name);
-    config.display.width = 640;
-    config.display.height = 360;
-    config.display.snapshotEvery = 0;
-    config.card.enabled = false;
-    config.log.summaryIntervalS = 0;
-    config.overlay.fadeMs = 1;
-    config.overlay.initial = "glasses";
-    config.days.dates.clear();
+    firmware::Config config = overlayLoopConfig(name, "glasses");
     config.state.dir = testing_support::freshOutputDir(name + "_state");
     return config;
 }
@@ -59,6 +51,25 @@ std::string today()
 
 class OverlayDaysWeather : public ::testing::Test {
 protected:
+    /// A frame loop on the talking face with `config`, the console attached.
+    struct Mirror {
+        explicit Mirror(const firmware::Config& config)
+            : loop(config, std::make_unique<PreloadedFaceSource>(30),
+                   firmware::makeDisplay(config.display))
+        {
+            loop.attachConsole(&console);
+        }
+        /// `status` as the console prints it now.
+        std::string status()
+        {
+            console.type("status\n");
+            EXPECT_TRUE(loop.step());
+            return std::string(console.output());
+        }
+        firmware::FrameLoop loop;
+        FakeConsole console;
+    };
+
     void SetUp() override
     {
         devNull_ = ::open("/dev/null", O_WRONLY);
@@ -79,10 +90,8 @@ TEST_F(OverlayDaysWeather, OnASpecialDayTheFaceWearsTheDaysOverlayUntilAButtonSa
     // catalogue lacks (a warning at start-up, left out).
     config.days.dates = {"2001-01-01 top_hat", today() + ".." + today() + " graduation_cap",
                          today() + " no_such_hat"};
-    firmware::FrameLoop loop(config, std::make_unique<PreloadedFaceSource>(30),
-                             firmware::makeDisplay(config.display));
-    FakeConsole console;
-    loop.attachConsole(&console);
+    Mirror mirror(config);
+    firmware::FrameLoop& loop = mirror.loop;
     ASSERT_NE(loop.overlaySelection(), nullptr);
     const firmware::OverlaySelection& selection = *loop.overlaySelection();
     for (int i = 0; i < 25; ++i)
@@ -92,9 +101,7 @@ TEST_F(OverlayDaysWeather, OnASpecialDayTheFaceWearsTheDaysOverlayUntilAButtonSa
     EXPECT_STREQ(selection.name(selection.choiceFor(face).overlay), "graduation_cap");
     EXPECT_EQ(selection.ruleFor(face), firmware::OverlayRule::Day);
 
-    console.type("status\n");
-    ASSERT_TRUE(loop.step());
-    const std::string status(console.output());
+    const std::string status = mirror.status();
     EXPECT_NE(status.find("day: graduation_cap (" + today() + ".." + today() + " graduation_cap)"),
               std::string::npos)
         << status;
@@ -103,7 +110,7 @@ TEST_F(OverlayDaysWeather, OnASpecialDayTheFaceWearsTheDaysOverlayUntilAButtonSa
         << status;
     EXPECT_NE(status.find("weather: none (no [weather] source)"), std::string::npos) << status;
 
-    console.type("overlay sunglasses\n");
+    mirror.console.type("overlay sunglasses\n");
     for (int i = 0; i < 3; ++i)
         ASSERT_TRUE(loop.step());
     EXPECT_STREQ(selection.name(selection.choiceFor(face).overlay), "sunglasses");
@@ -116,10 +123,8 @@ TEST_F(OverlayDaysWeather, TheForecastPutsItsHatOnAndStatusSaysWhenItWasFetched)
     const std::string forecast = config.state.dir + "/../overlay_weather_forecast.json";
     std::ofstream(forecast) << R"({"current":{"weather_code":63}})";
     config.weather.source = "file:" + forecast;
-    firmware::FrameLoop loop(config, std::make_unique<PreloadedFaceSource>(30),
-                             firmware::makeDisplay(config.display));
-    FakeConsole console;
-    loop.attachConsole(&console);
+    Mirror mirror(config);
+    firmware::FrameLoop& loop = mirror.loop;
     ASSERT_NE(loop.overlaySelection(), nullptr);
     const firmware::OverlaySelection& selection = *loop.overlaySelection();
     // The forecast is read by another thread; the wall clock decides once a second.
@@ -133,9 +138,7 @@ TEST_F(OverlayDaysWeather, TheForecastPutsItsHatOnAndStatusSaysWhenItWasFetched)
     ASSERT_NE(face, 0);
     EXPECT_STREQ(selection.name(selection.choiceFor(face).overlay), "rain_hat");
     EXPECT_EQ(selection.ruleFor(face), firmware::OverlayRule::Weather);
-    console.type("status\n");
-    ASSERT_TRUE(loop.step());
-    const std::string status(console.output());
+    const std::string status = mirror.status();
     EXPECT_NE(status.find("weather: rain_hat: rain (code 63) fetched 0 min ago from file:"),
               std::string::npos)
         << status;
