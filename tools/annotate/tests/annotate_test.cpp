@@ -31,7 +31,11 @@ std::string candidePath()
 // Runs aam-annotate with `arguments`; its exit code, and what it printed (both streams) in *out.
 int annotate(const std::string& arguments, std::string* out = nullptr)
 {
-    const std::string log = testing_support::freshOutputDir("annotate_run") + "/out.txt";
+    // One log per test: ctest runs the tests of this file side by side.
+    const std::string log = testing_support::freshOutputDir(
+                                std::string("annotate_run_") +
+                                ::testing::UnitTest::GetInstance()->current_test_info()->name()) +
+                            "/out.txt";
     // Never a window: a test must not wait for clicks on a desktop it happens to have.
     const int status = std::system((std::string("env -u DISPLAY -u WAYLAND_DISPLAY ") +
                                     AAM_ANNOTATE + " " + arguments + " >" + log + " 2>&1")
