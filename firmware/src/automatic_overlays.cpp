@@ -82,15 +82,9 @@ void AutomaticOverlays::decide(OverlaySelection& selection, std::time_t now) noe
     if (today_ != nullptr)
         todayIndex_ = dayOverlay_[static_cast<std::size_t>(today_ - calendar_.rules().data())];
     selection.setAutomatic(OverlayRule::Day, todayIndex_);
-    int weatherIndex = -1;
-    if (weather_) {
-        const int code = weather_->code();
-        for (std::size_t k = 0; k < weatherKinds_.size(); ++k)
-            for (const int c : weatherKinds_[k].codes)
-                if (c == code && weatherIndex < 0)
-                    weatherIndex = weatherOverlay_[k];
-    }
-    selection.setAutomatic(OverlayRule::Weather, weatherIndex);
+    const int kind = weather_ ? weatherKindFor(weatherKinds_, weather_->code()) : -1;
+    selection.setAutomatic(OverlayRule::Weather,
+                           kind < 0 ? -1 : weatherOverlay_[static_cast<std::size_t>(kind)]);
 }
 
 void AutomaticOverlays::format(const OverlaySelection& selection, Reply& reply) const noexcept

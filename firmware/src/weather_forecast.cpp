@@ -113,16 +113,22 @@ std::int64_t fetchedUnixOf(std::string_view cacheJson)
     return it != doc.end() && it->is_number_integer() ? it->get<std::int64_t>() : 0;
 }
 
+int weatherKindFor(std::span<const WeatherOverlay> kinds, int code) noexcept
+{
+    if (code < 0)
+        return -1;
+    for (std::size_t k = 0; k < kinds.size(); ++k)
+        for (const int c : kinds[k].codes)
+            if (c == code)
+                return static_cast<int>(k);
+    return -1;
+}
+
 const std::string& overlayForWeather(std::span<const WeatherOverlay> kinds, int code) noexcept
 {
     static const std::string kNone;
-    if (code < 0)
-        return kNone;
-    for (const WeatherOverlay& k : kinds)
-        for (const int c : k.codes)
-            if (c == code)
-                return k.overlay;
-    return kNone;
+    const int k = weatherKindFor(kinds, code);
+    return k < 0 ? kNone : kinds[static_cast<std::size_t>(k)].overlay;
 }
 
 const char* weatherCodeText(int code) noexcept

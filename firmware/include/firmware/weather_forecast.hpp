@@ -32,6 +32,8 @@ struct WeatherOverlay {
     std::vector<int> codes;  ///< the WMO codes that mean it
 };
 
+/// The first kind listing `code`, -1 when none does or code < 0.
+int weatherKindFor(std::span<const WeatherOverlay> kinds, int code) noexcept;
 /// The overlay for `code` (the first kind listing it), "" when none does or code < 0.
 const std::string& overlayForWeather(std::span<const WeatherOverlay> kinds, int code) noexcept;
 
