@@ -28,7 +28,6 @@
 #include "vision/motion_stage.hpp"
 #include "vision/optical_flow.hpp"
 
-#include <map>
 #include <memory>
 #include <opencv2/core.hpp>
 #include <opencv2/objdetect.hpp>
@@ -86,9 +85,6 @@ public:
     int pipelineFitIterations() const;
     /// The last step()'s shown faces' boxes in frame pixels, the boxes the AAM fit starts from.
     std::vector<cv::Rect> pipelineShownBoxes() const;
-    /// Keeps pipelineShownBoxes() as frame i's (the peer is timed on them after the run).
-    void keepBoxes(int i) { keptBoxes_[i] = pipelineShownBoxes(); }
-    const std::vector<cv::Rect>& boxesAt(int i) const { return keptBoxes_.at(i); }
     /// The last loaded frame (BGR 720x576).
     const cv::Mat& pipelineFrame() const { return pipelineFrame_; }
 
@@ -122,7 +118,6 @@ private:
     std::unique_ptr<vision::AamModel> aamModel_;
     std::unique_ptr<vision::AamStage> aamStage_;
     vision::FrameState pipelineState_;
-    std::map<int, std::vector<cv::Rect>> keptBoxes_;
     std::uint64_t pipelineSequence_ = 0;
 };
 

@@ -154,16 +154,22 @@ double percentile99(std::vector<double> v)
 
 // dlib's 68-point shape predictor on the faces our fit started from (every kDlibEvery-th frame
 // with fits, the frame's full-resolution grey, decoding and conversion untimed): ms per face.
-double dlibMsPerFace(FaceCases& faces, const std::vector<int>& fitFrames)
+// A frame the AAM fitted and the boxes its fits started from.
+struct FittedFrame {
+    int frame;
+    std::vector<cv::Rect> boxes;
+};
+
+double dlibMsPerFace(FaceCases& faces, const std::vector<FittedFrame>& fitted)
 {
     constexpr std::size_t kDlibEvery = 5;
     mirror_eval::DlibPeer dlib;
     std::vector<double> perFace;
-    for (std::size_t k = 0; k < fitFrames.size(); k += kDlibEvery) {
-        faces.pipelineLoad(fitFrames[k]);
+    for (std::size_t k = 0; k < fitted.size(); k += kDlibEvery) {
+        faces.pipelineLoad(fitted[k].frame);
         cv::Mat grey;
         cv::cvtColor(faces.pipelineFrame(), grey, cv::COLOR_BGR2GRAY);
-        for (const cv::Rect& r : faces.boxesAt(fitFrames[k])) {
+        for (const cv::Rect& r : fitted[k].boxes) {
             const mirror_eval::FaceBoxPx box{static_cast<double>(r.x), static_cast<double>(r.y),
                                              static_cast<double>(r.x + r.width),
                                              static_cast<double>(r.y + r.height)};
@@ -187,7 +193,7 @@ void printPipelineRatios(FaceCases& faces)
     std::vector<double> frameMs;
     double aamMs = 0.0;
     long fits = 0, iterations = 0;
-    std::vector<int> fitFrames;
+    std::vector<FittedFrame> fitted;
     faces.pipelineRestart();
     int shownFrames = 0;
     for (int i = 0; i < faces.pipelineFrames(); ++i) {
@@ -203,8 +209,7 @@ void printPipelineRatios(FaceCases& faces)
             aamMs += t2 - t1;
             fits += faces.pipelineFitsRun();
             iterations += faces.pipelineFitIterations();
-            fitFrames.push_back(i);
-            faces.keepBoxes(i);
+            fitted.push_back({i, faces.pipelineShownBoxes()});
         }
     }
     double mean = 0.0;
@@ -229,9 +234,9 @@ void printPipelineRatios(FaceCases& faces)
     if (fits == 0)
         throw std::runtime_error("mirror-bench: the AAM stage fitted no face on FGNet");
     const double oursPerFace = aamMs / static_cast<double>(fits);
-    const double dlibPerFace = dlibMsPerFace(faces, fitFrames);
+    const double dlibPerFace = dlibMsPerFace(faces, fitted);
     std::printf("time aam_fit_per_face %.3f ms (%ld fits in %zu frames, model %s)\n", oursPerFace,
-                fits, fitFrames.size(), faces.aamModelPath().c_str());
+                fits, fitted.size(), faces.aamModelPath().c_str());
     std::printf("time dlib_shape_predictor_per_face %.3f ms (same boxes, every 5th frame fitted)\n",
                 dlibPerFace);
     std::printf("ratio aam_ms_per_face %.3f\n", oursPerFace);
