@@ -163,3 +163,33 @@ TEST(TrackedFaceFitter, OnlyShownFacesAreFittedAndGoneTracksFreeTheirSlots)
 }
 
 }  // namespace
+
+TEST(TrackedFaceFitter, ASignatureSettlesAfterItsFitsAndEnrolmentCanAskForMore)
+{
+    REQUIRE_DEMO_MODEL();
+    vision::TrackedFaceFitterOptions options;
+    options.signatureFits = 3;
+    vision::TrackedFaceFitter fitter(*demoModel(), options);
+    const SyntheticFace face = posedFace(5.f, 0.f, 0.f, 0.f);
+    const vision::TrackedFace tracked = trackedFace(7, face.box(4.f), fitter.options().placement);
+    int settledAt = -1;
+    for (int frame = 0; frame < 12 && settledAt < 0; ++frame) {
+        fitter.process(face.image.view(), {&tracked, 1});
+        const vision::FaceFit& fit = fitter.fits()[0];
+        ASSERT_TRUE(fit.ok()) << fit.status();
+        if (fit.signatureSettled)
+            settledAt = frame;
+    }
+    ASSERT_GE(settledAt, 0) << "the signature never settled";
+    EXPECT_EQ(fitter.fits()[0].signature.samples, 3);
+    fitter.process(face.image.view(), {&tracked, 1});
+    EXPECT_EQ(fitter.fits()[0].signature.samples, 3) << "a settled signature no longer changes";
+
+    EXPECT_FALSE(fitter.collectSignature(99, 2)) << "no such track";
+    ASSERT_TRUE(fitter.collectSignature(7, 2));
+    fitter.process(face.image.view(), {&tracked, 1});
+    EXPECT_FALSE(fitter.fits()[0].signatureSettled);
+    fitter.process(face.image.view(), {&tracked, 1});
+    EXPECT_TRUE(fitter.fits()[0].signatureSettled);
+    EXPECT_EQ(fitter.fits()[0].signature.samples, 5);
+}

@@ -144,6 +144,35 @@ void TrackedFaceFitter::fitFace(ConstImageView grey, const TrackedFace& face, Sl
                     width <= options_.maxWidthRatio * box.width;
     // A failed fit is not carried on: the next frame starts again from the tracker's box.
     slot.tracking = out.ok();
+    updateSignature(slot, out);
+}
+
+bool TrackedFaceFitter::collectSignature(int faceId, int fits) noexcept
+{
+    for (Slot& s : slots_)
+        if (s.faceId == faceId && faceId != 0) {
+            const int target = s.signatureTarget > 0 ? s.signatureTarget : options_.signatureFits;
+            s.signatureTarget = std::max(target, s.signature.samples) + std::max(fits, 0);
+            return true;
+        }
+    return false;
+}
+
+// §6: the signature is taken only from ok fits whose shape units are frozen (the person's
+// proportions, not a first guess), averaged as a running mean so it never needs a buffer.
+void TrackedFaceFitter::updateSignature(Slot& slot, FaceFit& out) noexcept
+{
+    const int target = slot.signatureTarget > 0 ? slot.signatureTarget : options_.signatureFits;
+    FaceSignature& sig = slot.signature;
+    if (out.ok() && slot.state.fits > fitter_.options().fitsBeforeShapeFreeze &&
+        sig.samples < target) {
+        const float w = 1.f / static_cast<float>(sig.samples + 1);
+        for (int i = 0; i < kAamShapeUnits; ++i)
+            sig.shapeUnits[i] += w * (slot.state.head.sigma[i] - sig.shapeUnits[i]);
+        ++sig.samples;
+    }
+    out.signature = sig;
+    out.signatureSettled = sig.samples >= target;
 }
 
 }  // namespace vision

@@ -5,6 +5,7 @@
 // fixed size: the frame state holds an array of them, allocated at start-up.
 
 #include "vision/aam_fitter.hpp"
+#include "vision/face_signature.hpp"
 #include "vision/geometry.hpp"
 
 #include <array>
@@ -42,6 +43,11 @@ struct FaceFit {
     float faceSize = 0.f;
     int vertexCount = 0;
     std::array<Point2f, kAamMaxVertices> vertices{};  ///< the fitted mesh, image pixels
+    /// Who the face is (§6): the mean over the track's first ok fits (TrackedFaceFitter);
+    /// signature.samples counts them. Settled once it has the fits recognition waits for: from
+    /// then on it no longer changes (unless more are asked for, as enrolment does).
+    FaceSignature signature{};
+    bool signatureSettled = false;
 
     /// Shown: the pose may place overlays; otherwise the face keeps the 2D pose.
     bool ok() const noexcept

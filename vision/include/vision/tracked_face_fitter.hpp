@@ -43,6 +43,9 @@ struct TrackedFaceFitterOptions {
     float maxCentreShift = 0.3f;
     float minWidthRatio = 0.7f;
     float maxWidthRatio = 1.4f;
+    /// Who a face is (FaceFit::signature) is the mean of a track's first this many ok fits taken
+    /// after its shape units froze; then it is settled (§6).
+    int signatureFits = 8;
 };
 
 class TrackedFaceFitter {
@@ -63,6 +66,9 @@ public:
     AamStart startFor(const TrackedFace& face) const noexcept;
     /// Forgets every track (a new camera, a rebuilt pipeline).
     void reset() noexcept;
+    /// Keeps averaging track `faceId`'s signature over `fits` more ok fits than it has (enrolment
+    /// collects a few seconds of them). False when no such track is being fitted.
+    bool collectSignature(int faceId, int fits) noexcept;
 
     int vertexCount() const noexcept { return fitter_.vertexCount(); }
     /// The fitted mesh's triangles (indices into FaceFit::vertices), for drawing it.
@@ -76,9 +82,12 @@ private:
         bool tracking = false;  ///< the last fit was ok: follow from it
         AamStart last{};        ///< the start box of the last frame (follow's `from`)
         AamFaceState state{};
+        FaceSignature signature{};  ///< the running mean of the track's signatures
+        int signatureTarget = 0;    ///< fits to average (0: options().signatureFits)
     };
     Slot* slotFor(int faceId) noexcept;
     void fitFace(ConstImageView grey, const TrackedFace& face, Slot& slot, FaceFit& out) noexcept;
+    void updateSignature(Slot& slot, FaceFit& out) noexcept;
 
     AamFitter fitter_;
     TrackedFaceFitterOptions options_;

@@ -1,0 +1,63 @@
+#pragma once
+// PersonGallery: the people the mirror knows, as FaceSignatures, and which of them a face is
+// (§6; dissertation 6.2: recognition from the fitted model's parameters). Fixed capacity, no
+// allocation after construction: match() runs in the frame loop. The firmware owns the names and
+// files; here a person is only a positive id and a signature. Why the distance is what it is:
+// person_gallery.cpp.
+
+#include "vision/face_signature.hpp"
+
+#include <array>
+
+namespace vision {
+
+struct PersonGalleryOptions {
+    /// A face whose best score is below this is nobody enrolled (a guest).
+    float acceptScore = 0.5f;
+    /// What the distance weighs (0 turns a part off): the shape units and the appearance.
+    float shapeWeight = 1.f;
+    float appearanceWeight = 1.f;
+};
+
+/// The best match of a signature: the person (0: a guest) and how sure, 0..1 (1: identical).
+struct PersonMatch {
+    int personId = 0;
+    float score = 0.f;
+    /// The best enrolled person's score even when it is too low to accept (for `faces`), and who.
+    int nearestId = 0;
+    float nearestScore = 0.f;
+};
+
+class PersonGallery {
+public:
+    static constexpr int kMaxPeople = 64;
+
+    explicit PersonGallery(const PersonGalleryOptions& options = {}) noexcept;
+
+    /// Adds `personId` (> 0) with `signature`, or replaces their signature. False when the id is
+    /// not positive, the signature is empty (no samples) or the gallery is full.
+    bool enrol(int personId, const FaceSignature& signature) noexcept;
+    void forget(int personId) noexcept;
+    void clear() noexcept;
+    int size() const noexcept { return count_; }
+    bool contains(int personId) const noexcept;
+
+    /// Who `signature` is. A guest (personId 0) when it is empty or nobody scores acceptScore.
+    PersonMatch match(const FaceSignature& signature) const noexcept;
+    /// The score of `signature` against one enrolled person (0 when unknown).
+    float score(int personId, const FaceSignature& signature) const noexcept;
+
+    const PersonGalleryOptions& options() const noexcept { return options_; }
+    void setOptions(const PersonGalleryOptions& options) noexcept { options_ = options; }
+
+private:
+    struct Entry {
+        int personId = 0;
+        FaceSignature signature{};
+    };
+    PersonGalleryOptions options_;
+    std::array<Entry, kMaxPeople> entries_{};
+    int count_ = 0;
+};
+
+}  // namespace vision
