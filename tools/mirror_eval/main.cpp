@@ -235,6 +235,8 @@ int main(int argc, char** argv)
     peopleCmd->add_option("--appearance-weight", people.appearanceWeight,
                           "the gallery's appearanceWeight");
     peopleCmd->add_option("--dump", people.dump, "write every signature to this CSV");
+    peopleCmd->add_flag("--nearest", people.nearest,
+                        "the appearance parameters from the nearest pixel (the fit's sampling)");
     peopleCmd->add_flag("--per-image", people.perImage, "say why a photograph has no signature");
 
     if (const int code = tool_cli::parse(app, argc, argv); code >= 0)

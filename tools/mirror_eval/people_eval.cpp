@@ -432,14 +432,15 @@ FgnetResult runFgnet(const PeopleEvalOptions& o, const fs::path& folder, BoxFind
 
 /// What recognition adds to a face's frame while its signature collects (the appearance
 /// parameters), and one match against a gallery, timed on an IMM photograph's fit.
-void timeRecognition(const vision::AamModel& model, const cv::Mat& grey, BoxFinder& boxes,
-                     const vision::PersonGallery& gallery, std::FILE* out)
+void timeRecognition(const vision::AamModel& model, const vision::AamFitterOptions& options,
+                     const cv::Mat& grey, BoxFinder& boxes, const vision::PersonGallery& gallery,
+                     std::FILE* out)
 {
     const std::optional<vision::TrackedFace> face = boxes.largest(grey, 1);
     if (!face)
         return;
     vision::TrackedFaceFitter placement(model);
-    vision::AamFitter fitter(model);
+    vision::AamFitter fitter(model, options);
     vision::AamFaceState state;
     fitter.start(state, placement.startFor(*face));
     for (int i = 0; i < 5; ++i)
@@ -489,7 +490,10 @@ int run(const PeopleEvalOptions& o, std::FILE* out)
     const vision::AamModelFile file = vision::loadAamModel(o.model);
     if (!file.ok)
         throw std::runtime_error(file.problem);
-    vision::TrackedFaceFitter fitter(file.model);
+    vision::TrackedFaceFitterOptions fitterOptions;
+    if (o.nearest)
+        fitterOptions.fit.appearanceSampling = vision::AamSampling::Nearest;
+    vision::TrackedFaceFitter fitter(file.model, fitterOptions);
     BoxFinder boxes(o.cascade);
     vision::PersonGalleryOptions galleryOptions;
     if (o.acceptScore >= 0.f)
@@ -531,7 +535,8 @@ int run(const PeopleEvalOptions& o, std::FILE* out)
         char name[32];
         std::snprintf(name, sizeof name, "01-1m.jpg");
         if (fs::exists(imm / name))
-            timeRecognition(file.model, readGreyImage(imm / name), boxes, fgnetGallery, out);
+            timeRecognition(file.model, fitterOptions.fit, readGreyImage(imm / name), boxes,
+                            fgnetGallery, out);
     }
     FgnetResult fgnetResult;
     if (withFgnet)

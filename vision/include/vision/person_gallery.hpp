@@ -21,8 +21,8 @@ struct PersonGalleryOptions {
     /// A face whose best score is below this is nobody enrolled (a guest).
     float acceptScore = 0.35f;
     /// What the distance weighs (0 turns a part off): the shape units and the appearance. The
-    /// shape units did not help on IMM (person_gallery.cpp): off by default.
-    float shapeWeight = 0.f;
+    /// shape units help a little at a tenth of the appearance's weight (person_gallery.cpp).
+    float shapeWeight = 0.1f;
     float appearanceWeight = 1.f;
     std::array<float, kFaceSignatureMaxAppearance> appearanceSpread = defaultAppearanceSpread();
     std::array<float, kAamShapeUnits> shapeSpread = defaultShapeSpread();
