@@ -217,6 +217,8 @@ int main(int argc, char** argv)
     peopleCmd->add_option("--imm", people.imm, "the IMM folder (default DATA/imm_face_db; none)");
     peopleCmd->add_option("--frames", people.frames,
                           "franck's frames (default DATA/fgnet_talking_face/images; none)");
+    peopleCmd->add_option("--stranger", people.stranger,
+                          "a facegen folder whose moving face must not be taken for franck");
     peopleCmd->add_option("--cascade", people.cascade, "the detector's Haar cascade")
         ->capture_default_str();
     peopleCmd->add_option("--enrol", people.enrol, "IMM types a person is enrolled from: 1 or 1,2")

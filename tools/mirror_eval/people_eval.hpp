@@ -10,7 +10,9 @@
 //    then even) and every probe of the others: how many are accepted as someone (false accept).
 //  - FGNet's talking face (--frames DIR, or the data folder's): franck enrolled from frames
 //    [0, --enrol-frames), then the rest cut into windows of --window frames, each a new track
-//    whose settled signature must be accepted as franck (IMM's persons enrolled beside him).
+//    whose settled signature must be accepted as franck (IMM's persons enrolled beside him);
+//    with --stranger DIR (a facegen folder) its moving face, someone else, through the same
+//    windows from facegen's truth boxes: never to be taken for franck.
 // Also the cost: the appearance parameters (what recognition adds to a collecting face's frame)
 // and one match, timed. Final line
 //   `people: rank1=.. rank1_turned=.. false_accept=.. fgnet_kept=..`
@@ -27,6 +29,7 @@ struct PeopleEvalOptions {
     std::string imm;     ///< default: DATA/imm_face_db ("none": skip)
     std::string frames;  ///< default: DATA/fgnet_talking_face/images ("none": skip)
     std::string cascade = "/usr/share/opencv4/haarcascades/haarcascade_frontalface_default.xml";
+    std::string stranger;  ///< a facegen folder: its moving face must not be taken for franck
     std::string enrol = "1";  ///< IMM types enrolled: "1" or "1,2"
     int persons = 40;         ///< IMM: only persons 1..N (a quick run)
     int enrolFrames = 100;    ///< FGNet: franck's enrolment frames

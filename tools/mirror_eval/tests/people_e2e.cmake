@@ -1,15 +1,26 @@
 # End to end: mirror-eval people on a few IMM persons and FGNet frames (seconds, not the full run:
 # that measures the numbers, docs/people-evaluation.md), checking the final lines' format and that
 # bad arguments are one line with exit code 2. Skips (passes, saying so) without the demo model.
-#   -DMIRROR_EVAL=... -DDATA=... -DMODEL=...
+#   -DMIRROR_EVAL=... -DDATA=... -DMODEL=... -DOUT=... [-DFACEGEN=...: a composed stranger too]
 if(NOT EXISTS "${MODEL}")
   message(STATUS "SKIPPED: ${MODEL} is not built (scripts/dev model)")
   return()
 endif()
 set(num "([0-9]+\\.[0-9]+|nan)")
+file(REMOVE_RECURSE ${OUT})
+file(MAKE_DIRECTORY ${OUT})
 
+set(stranger "")
+if(FACEGEN)
+  execute_process(COMMAND ${FACEGEN} --scenario one --frames 30 --out ${OUT}/stranger --data ${DATA}
+                  RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  if(NOT rc EQUAL 0)
+    message(FATAL_ERROR "facegen failed (${rc}): ${out}${err}")
+  endif()
+  set(stranger --stranger ${OUT}/stranger)
+endif()
 execute_process(COMMAND ${MIRROR_EVAL} people --model ${MODEL} --data ${DATA} --persons 3
-                        --max-frames 90 --enrol-frames 30 --window 30 --max-fits 15
+                        --max-frames 90 --enrol-frames 30 --window 30 --max-fits 15 ${stranger}
                 RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
 if(NOT rc EQUAL 0)
   message(FATAL_ERROR "mirror-eval people failed (${rc}): ${out}${err}")
@@ -25,6 +36,9 @@ foreach(line "people-heldout: rank1=${num} rank1_turned=${num} false_accept=${nu
     message(FATAL_ERROR "no line matching '${line}' in:\n${out}")
   endif()
 endforeach()
+if(FACEGEN AND NOT out MATCHES "people-stranger: not_franck=${num}\n")
+  message(FATAL_ERROR "no people-stranger line in:\n${out}")
+endif()
 message(STATUS "${last}")
 
 function(expect_usage_error pattern)
@@ -41,3 +55,5 @@ expect_usage_error("--enrol 3: give 1 or 1,2" --model ${MODEL} --data ${DATA} --
 expect_usage_error("--persons must be 2-40" --model ${MODEL} --data ${DATA} --persons 1)
 expect_usage_error("--imm .*nowhere: not a folder" --model ${MODEL} --imm ${DATA}/nowhere)
 expect_usage_error(".*--window and --max-fits must be >= 1" --model ${MODEL} --data ${DATA} --window 0)
+expect_usage_error("--stranger needs the FGNet run" --model ${MODEL} --data ${DATA} --persons 2
+                   --frames none --stranger ${OUT})
