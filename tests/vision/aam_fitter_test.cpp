@@ -382,7 +382,6 @@ TEST(AamFitTables, SteepestDescentMatchesTheWarpedImage)
     }
 }
 
-
 /// §6: a face's appearance parameters. Against a plain float reference (the same warp, then the
 /// warped image less gain * A0 + bias, over the gain, in double, dotted with each mode as floats):
 /// equal up to the error image's 1/16 grey level. And on a synthetic face drawn with known mode
@@ -440,8 +439,8 @@ TEST(AamFitter, AppearanceParametersMatchAPlainReferenceAndTheWeightsAFaceWasDra
         for (std::size_t j = 0; j < spec.appearanceWeights.size(); ++j) {
             double dot = 0;
             for (std::size_t i = 0; i < model.pixels.size(); ++i) {
-                const std::size_t at = spanAt[model.pixels[i].y * model.frameWidth +
-                                              model.pixels[i].x];
+                const std::size_t at =
+                    spanAt[model.pixels[i].y * model.frameWidth + model.pixels[i].x];
                 if (t.mask[at] != 0)
                     dot += mode.values[at] / double{mode.scale} *
                            model.appearanceModes[j * model.pixels.size() + i];

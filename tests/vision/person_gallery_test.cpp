@@ -45,7 +45,8 @@ TEST(PersonGallery, EmptySignaturesBadIdsAndAFullGalleryAreRefused)
     for (int id = 1; id <= vision::PersonGallery::kMaxPeople; ++id)
         ASSERT_TRUE(gallery.enrol(id, signature(0.001f * id, 0.f)));
     EXPECT_FALSE(gallery.enrol(1000, signature(0.f, 0.f))) << "full";
-    EXPECT_TRUE(gallery.enrol(5, signature(0.2f, 1.f))) << "a known person is replaced, even when full";
+    EXPECT_TRUE(gallery.enrol(5, signature(0.2f, 1.f)))
+        << "a known person is replaced, even when full";
 }
 
 TEST(PersonGallery, ForgetRemovesOnlyThatPerson)

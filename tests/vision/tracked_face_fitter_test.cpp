@@ -8,10 +8,9 @@
 
 #include "aam_demo_model.hpp"
 #include "aam_synthetic_face.hpp"
+#include "alloc_counter.hpp"
 #include "test_paths.hpp"
 #include "vision/aam_model.hpp"
-
-#include "alloc_counter.hpp"
 
 #include <gtest/gtest.h>
 

@@ -64,9 +64,9 @@ public:
                 continue;
             vision::TrackedFace f;
             f.id = id;
-            f.centre = {2.f * (static_cast<float>(r.x) + 0.5f * static_cast<float>(r.width)) - 0.5f,
-                        2.f * (static_cast<float>(r.y) + 0.5f * static_cast<float>(r.height)) -
-                            0.5f};
+            f.centre = {
+                2.f * (static_cast<float>(r.x) + 0.5f * static_cast<float>(r.width)) - 0.5f,
+                2.f * (static_cast<float>(r.y) + 0.5f * static_cast<float>(r.height)) - 0.5f};
             f.size = side;
             f.state = vision::FaceState::Confirmed;
             best = f;
@@ -116,7 +116,8 @@ vision::FaceSignature signatureOfStill(const cv::Mat& grey, BoxFinder& boxes,
         if (fit.signatureSettled)
             break;
         if (log != nullptr && i + 1 == maxFits)
-            std::fprintf(log, "  %s: not settled after %d fits: last fit %s (error %.2f, yaw %.1f)\n",
+            std::fprintf(log,
+                         "  %s: not settled after %d fits: last fit %s (error %.2f, yaw %.1f)\n",
                          name, maxFits, fit.status(), static_cast<double>(fit.fitError),
                          static_cast<double>(fit.yawDegrees));
     }
@@ -143,7 +144,10 @@ vision::FaceSignature merged(const vision::FaceSignature& a, const vision::FaceS
 struct Rate {
     int hits = 0, total = 0;
     void add(bool hit) { hits += hit ? 1 : 0, ++total; }
-    double value() const { return total > 0 ? static_cast<double>(hits) / total : aam_report::kNan; }
+    double value() const
+    {
+        return total > 0 ? static_cast<double>(hits) / total : aam_report::kNan;
+    }
     std::string text() const
     {
         return total > 0 ? aam_report::number(value(), "%.3f") + " (" + std::to_string(hits) + "/" +
@@ -162,7 +166,7 @@ std::vector<int> enrolTypes(const std::string& text)
 }
 
 struct ImmResult {
-    Rate frontal, turned;       ///< all persons (the final line)
+    Rate frontal, turned;  ///< all persons (the final line)
     Rate heldFrontal, heldTurned;
     Rate falseAccept, heldFalseAccept;
     bool ran = false;
@@ -228,8 +232,9 @@ void printSpread(const std::vector<std::array<vision::FaceSignature, kImmTypes +
 }
 
 ImmResult runImm(const PeopleEvalOptions& o, const fs::path& folder, BoxFinder& boxes,
-                 vision::TrackedFaceFitter& fitter, const vision::PersonGalleryOptions& galleryOptions,
-                 std::ostream* csv, std::FILE* out)
+                 vision::TrackedFaceFitter& fitter,
+                 const vision::PersonGalleryOptions& galleryOptions, std::ostream* csv,
+                 std::FILE* out)
 {
     const std::vector<int> enrolled = enrolTypes(o.enrol);
     // signatures[person][type]
@@ -260,8 +265,9 @@ ImmResult runImm(const PeopleEvalOptions& o, const fs::path& folder, BoxFinder& 
     if (images == 0)
         throw UsageError("IMM " + folder.string() + ": no IMM photographs (NN-Tx.jpg)");
     printSpread(signatures, out);
-    std::fprintf(out, "IMM %s: %d photographs, %d without a settled signature (no box or no ok "
-                      "fit); enrolled from type%s %s\n",
+    std::fprintf(out,
+                 "IMM %s: %d photographs, %d without a settled signature (no box or no ok "
+                 "fit); enrolled from type%s %s\n",
                  folder.string().c_str(), images, noSignature, enrolled.size() > 1 ? "s" : "",
                  o.enrol.c_str());
     std::fprintf(out, "without a signature, per type (no box / no ok fit after the freeze):");
@@ -276,9 +282,12 @@ ImmResult runImm(const PeopleEvalOptions& o, const fs::path& folder, BoxFinder& 
         return e;
     };
     const bool isEnrolType[kImmTypes + 1] = {false,
-                                            std::count(enrolled.begin(), enrolled.end(), 1) > 0,
-                                            std::count(enrolled.begin(), enrolled.end(), 2) > 0,
-                                            false, false, false, false};
+                                             std::count(enrolled.begin(), enrolled.end(), 1) > 0,
+                                             std::count(enrolled.begin(), enrolled.end(), 2) > 0,
+                                             false,
+                                             false,
+                                             false,
+                                             false};
 
     // Rank-1: everybody enrolled, each other photograph matched; the nearest must be its person.
     vision::PersonGallery all(galleryOptions);
@@ -382,8 +391,8 @@ FgnetResult runFgnet(const PeopleEvalOptions& o, const fs::path& folder, BoxFind
         if (!asked)
             asked = fitter.collectSignature(1, o.enrolFrames);
     }
-    const vision::FaceSignature franck = fitter.fits().empty() ? vision::FaceSignature{}
-                                                               : fitter.fits()[0].signature;
+    const vision::FaceSignature franck =
+        fitter.fits().empty() ? vision::FaceSignature{} : fitter.fits()[0].signature;
     if (csv != nullptr)
         dumpSignature(*csv, "fgnet-enrol", kFranck, 0, franck);
     if (!gallery.enrol(kFranck, franck)) {
@@ -415,10 +424,10 @@ FgnetResult runFgnet(const PeopleEvalOptions& o, const fs::path& folder, BoxFind
         if (csv != nullptr)
             dumpSignature(*csv, "fgnet", kFranck, start, settled);
         std::fprintf(out, "  frames %d-%d: %s (score %.3f, nearest %d at %.3f)\n", start, end - 1,
-                     settled.samples == 0         ? "no settled signature"
-                     : m.personId == kFranck      ? "franck"
-                     : m.personId == 0            ? "a guest"
-                                                  : "someone else",
+                     settled.samples == 0    ? "no settled signature"
+                     : m.personId == kFranck ? "franck"
+                     : m.personId == 0       ? "a guest"
+                                             : "someone else",
                      static_cast<double>(m.score), m.nearestId,
                      static_cast<double>(m.nearestScore));
     }
@@ -466,7 +475,8 @@ Rate runStranger(const PeopleEvalOptions& o, const fs::path& folder,
     Rate notFranck;
     int settledWindows = 0;
     std::map<int, int> named;
-    for (std::size_t start = 0; start < frames.size(); start += static_cast<std::size_t>(o.window)) {
+    for (std::size_t start = 0; start < frames.size();
+         start += static_cast<std::size_t>(o.window)) {
         fitter.reset();
         vision::FaceSignature settled{};
         const std::size_t end = std::min(start + static_cast<std::size_t>(o.window), frames.size());
@@ -558,8 +568,8 @@ int run(const PeopleEvalOptions& o, std::FILE* out)
         throw UsageError("--enrol-frames, --window and --max-fits must be >= 1, --max-frames >= 0");
     enrolTypes(o.enrol);
     const fs::path imm = o.imm.empty() ? fs::path(o.dataDir) / "imm_face_db" : fs::path(o.imm);
-    const fs::path frames =
-        o.frames.empty() ? fs::path(o.dataDir) / "fgnet_talking_face" / "images" : fs::path(o.frames);
+    const fs::path frames = o.frames.empty() ? fs::path(o.dataDir) / "fgnet_talking_face" / "images"
+                                             : fs::path(o.frames);
     const bool withImm = o.imm != "none", withFgnet = o.frames != "none";
     if (withImm && !fs::is_directory(imm))
         throw UsageError("--imm " + imm.string() + ": not a folder");

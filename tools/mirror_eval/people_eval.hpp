@@ -29,18 +29,18 @@ struct PeopleEvalOptions {
     std::string imm;     ///< default: DATA/imm_face_db ("none": skip)
     std::string frames;  ///< default: DATA/fgnet_talking_face/images ("none": skip)
     std::string cascade = "/usr/share/opencv4/haarcascades/haarcascade_frontalface_default.xml";
-    std::string stranger;  ///< a facegen folder: its moving face must not be taken for franck
-    std::string enrol = "1";  ///< IMM types enrolled: "1" or "1,2"
-    int persons = 40;         ///< IMM: only persons 1..N (a quick run)
-    int enrolFrames = 100;    ///< FGNet: franck's enrolment frames
-    int window = 100;         ///< FGNet: frames per recognition track
-    int maxFrames = 0;        ///< FGNet: only the first N frames (0: all)
-    int maxFits = 30;         ///< fits of one still image before its signature must have settled
+    std::string stranger;      ///< a facegen folder: its moving face must not be taken for franck
+    std::string enrol = "1";   ///< IMM types enrolled: "1" or "1,2"
+    int persons = 40;          ///< IMM: only persons 1..N (a quick run)
+    int enrolFrames = 100;     ///< FGNet: franck's enrolment frames
+    int window = 100;          ///< FGNet: frames per recognition track
+    int maxFrames = 0;         ///< FGNet: only the first N frames (0: all)
+    int maxFits = 30;          ///< fits of one still image before its signature must have settled
     float acceptScore = -1.f;  ///< < 0: the gallery's default
     float shapeWeight = -1.f, appearanceWeight = -1.f;  ///< < 0: the gallery's default
     bool nearest = false;   ///< appearance parameters from the nearest pixel, not bilinear
     bool perImage = false;  ///< say why an IMM photograph has no signature
-    std::string dump;  ///< write every signature to this CSV (for measuring distances)
+    std::string dump;       ///< write every signature to this CSV (for measuring distances)
 };
 
 /// Runs, prints the report and its final line to `out`. Returns 0; 2 for bad arguments and 1 for

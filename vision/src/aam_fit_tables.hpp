@@ -65,7 +65,7 @@ struct Tables {
     /// Each kept mode's standard deviation over the training faces (the model's variances
     /// projected on it): the unit of a signature's appearance parameters (§6).
     std::vector<float> appearanceModeStd;
-    Eigen::MatrixXd hessian2d;               ///< of `steepest` as quantised
+    Eigen::MatrixXd hessian2d;  ///< of `steepest` as quantised
 
     // The CANDIDE head.
     std::vector<Eigen::Vector3f> headVertices;  ///< g0

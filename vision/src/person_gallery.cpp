@@ -19,7 +19,8 @@ namespace {
 //   (0.25: 0.77 / 0.45); norm-relative or cosine scores: no better, more strangers accepted.
 // acceptScore 0.35: strangers accepted (halves of the persons enrolled) 1 of 180 on the training
 // persons, 0.6% on the development model (0.028 without the shape units, which is why they stay).
-float scoreOf(const FaceSignature& a, const FaceSignature& b, const PersonGalleryOptions& o) noexcept
+float scoreOf(const FaceSignature& a, const FaceSignature& b,
+              const PersonGalleryOptions& o) noexcept
 {
     if (a.samples == 0 || b.samples == 0)
         return 0.f;
