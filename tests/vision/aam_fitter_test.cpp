@@ -467,19 +467,24 @@ TEST(AamFitter, AppearanceParametersAllocateNothing)
     if (!testing_support::allocationCountingAvailable())
         GTEST_SKIP() << "allocation counting is not available in this build";
     const vision::aam::Tables t = vision::aam::buildTables(*demoModel());
-    vision::AamFitter fitter(*demoModel());
     std::mt19937 random(12);
     const SyntheticFaceSpec spec = posedSpec(10.f, 0.f, 5.f, random);
     const SyntheticFace face = renderSyntheticFace(*demoModel(), spec, kWidth, kHeight);
     vision::AamFaceState state = stateAt(t, face, 0.f);
     state.gain = spec.gain;
     state.bias = spec.bias;
-    std::array<float, 64> out{};
-    testing_support::AllocationScope scope;
-    const int n = fitter.appearanceParameters(face.image.view(), state, out);
-    EXPECT_GT(n, 0);
-    EXPECT_EQ(scope.counts().cxxNew, 0);
-    EXPECT_EQ(scope.counts().ownMalloc, 0);
+    for (const vision::AamSampling sampling :
+         {vision::AamSampling::Bilinear, vision::AamSampling::Nearest}) {
+        vision::AamFitterOptions options;
+        options.appearanceSampling = sampling;
+        vision::AamFitter fitter(*demoModel(), options);
+        std::array<float, 64> out{};
+        testing_support::AllocationScope scope;
+        const int n = fitter.appearanceParameters(face.image.view(), state, out);
+        EXPECT_GT(n, 0);
+        EXPECT_EQ(scope.counts().cxxNew, 0);
+        EXPECT_EQ(scope.counts().ownMalloc, 0);
+    }
 }
 
 }  // namespace
