@@ -217,6 +217,9 @@ int main(int argc, char** argv)
     peopleCmd->add_option("--imm", people.imm, "the IMM folder (default DATA/imm_face_db; none)");
     peopleCmd->add_option("--frames", people.frames,
                           "franck's frames (default DATA/fgnet_talking_face/images; none)");
+    peopleCmd->add_option("--truth", people.truth,
+                          "per-frame .pts for --frames: the face holding their centre is franck "
+                          "(default with the default frames: DATA/fgnet_talking_face/points)");
     peopleCmd->add_option("--stranger", people.stranger,
                           "a facegen folder whose moving face must not be taken for franck");
     peopleCmd->add_option("--cascade", people.cascade, "the detector's Haar cascade")

@@ -2,6 +2,7 @@
 #include "people_eval.hpp"
 
 #include "aam_eval_report.hpp"
+#include "annotation_files.hpp"
 #include "vision/aam_model.hpp"
 #include "vision/face_detector.hpp"
 #include "vision/haar_cascade.hpp"
@@ -51,7 +52,9 @@ public:
     {
     }
 
-    std::optional<vision::TrackedFace> largest(const cv::Mat& grey, int id)
+    /// The largest face, or with `near` the largest whose box holds that point.
+    std::optional<vision::TrackedFace> largest(const cv::Mat& grey, int id,
+                                               std::optional<vision::Point2f> near = std::nullopt)
     {
         cv::resize(grey, half_, {grey.cols / 2, grey.rows / 2}, 0, 0, cv::INTER_AREA);
         if (half_.cols > kMaxSide.width || half_.rows > kMaxSide.height ||
@@ -69,6 +72,9 @@ public:
                 2.f * (static_cast<float>(r.y) + 0.5f * static_cast<float>(r.height)) - 0.5f};
             f.size = side;
             f.state = vision::FaceState::Confirmed;
+            if (near && (std::abs(near->x - f.centre.x) > 0.5f * side ||
+                         std::abs(near->y - f.centre.y) > 0.5f * side))
+                continue;
             best = f;
         }
         return best;
@@ -360,6 +366,27 @@ struct FgnetResult {
     bool ran = false;
 };
 
+/// The centre of frame `frame`'s annotated points in `truth` (NAME.pts beside NAME.jpg), when
+/// there is a truth folder: the face the sequence is about, among the detector's faces.
+std::optional<vision::Point2f> truthCentre(const std::string& truth, const fs::path& frame)
+{
+    if (truth.empty())
+        return std::nullopt;
+    const fs::path pts = fs::path(truth) / frame.filename().replace_extension(".pts");
+    if (!fs::exists(pts))
+        return std::nullopt;
+    const aam::Annotation a = aam::loadAnnotation(pts.string());
+    if (a.points.empty())
+        return std::nullopt;
+    double x0 = 1e30, x1 = -1e30, y0 = 1e30, y1 = -1e30;
+    for (const Eigen::Vector2d& p : a.points) {
+        x0 = std::min(x0, p.x()), x1 = std::max(x1, p.x());
+        y0 = std::min(y0, p.y()), y1 = std::max(y1, p.y());
+    }
+    return vision::Point2f{static_cast<float>(0.5 * (x0 + x1)),
+                           static_cast<float>(0.5 * (y0 + y1))};
+}
+
 FgnetResult runFgnet(const PeopleEvalOptions& o, const fs::path& folder, BoxFinder& boxes,
                      vision::TrackedFaceFitter& fitter, vision::PersonGallery& gallery,
                      std::ostream* csv, std::FILE* out)
@@ -383,8 +410,10 @@ FgnetResult runFgnet(const PeopleEvalOptions& o, const fs::path& folder, BoxFind
     fitter.reset();
     bool asked = false;
     for (int f = 0; f < o.enrolFrames; ++f) {
-        const cv::Mat grey = readGreyImage(frames[static_cast<std::size_t>(f)]);
-        const std::optional<vision::TrackedFace> face = boxes.largest(grey, 1);
+        const fs::path& path = frames[static_cast<std::size_t>(f)];
+        const cv::Mat grey = readGreyImage(path);
+        const std::optional<vision::TrackedFace> face =
+            boxes.largest(grey, 1, truthCentre(o.truth, path));
         if (!face)
             continue;  // not seen this frame: the track is kept, as the tracker would
         fitter.process(viewOf(grey), {&*face, 1});
@@ -408,8 +437,10 @@ FgnetResult runFgnet(const PeopleEvalOptions& o, const fs::path& folder, BoxFind
         vision::FaceSignature settled{};
         const int end = std::min(start + o.window, static_cast<int>(frames.size()));
         for (int f = start; f < end; ++f) {
-            const cv::Mat grey = readGreyImage(frames[static_cast<std::size_t>(f)]);
-            const std::optional<vision::TrackedFace> face = boxes.largest(grey, id);
+            const fs::path& path = frames[static_cast<std::size_t>(f)];
+            const cv::Mat grey = readGreyImage(path);
+            const std::optional<vision::TrackedFace> face =
+                boxes.largest(grey, id, truthCentre(o.truth, path));
             if (!face)
                 continue;
             fitter.process(viewOf(grey), {&*face, 1});
@@ -432,10 +463,12 @@ FgnetResult runFgnet(const PeopleEvalOptions& o, const fs::path& folder, BoxFind
                      static_cast<double>(m.nearestScore));
     }
     std::fprintf(out,
-                 "FGNet %s: franck enrolled from frames 0-%d (%d fits) beside %d IMM persons; "
+                 "FGNet %s%s: franck enrolled from frames 0-%d (%d fits) beside %d IMM persons; "
                  "windows of %d frames accepted as franck %s, nearest franck %d\n",
-                 folder.string().c_str(), o.enrolFrames - 1, franck.samples, gallery.size() - 1,
-                 o.window, r.kept.text().c_str(), named);
+                 folder.string().c_str(),
+                 o.truth.empty() ? " (the largest face)" : " (the face holding the truth's centre)",
+                 o.enrolFrames - 1, franck.samples, gallery.size() - 1, o.window,
+                 r.kept.text().c_str(), named);
     return r;
 }
 
@@ -571,6 +604,11 @@ int run(const PeopleEvalOptions& o, std::FILE* out)
     const fs::path frames = o.frames.empty() ? fs::path(o.dataDir) / "fgnet_talking_face" / "images"
                                              : fs::path(o.frames);
     const bool withImm = o.imm != "none", withFgnet = o.frames != "none";
+    PeopleEvalOptions withTruth = o;
+    if (o.frames.empty() && o.truth.empty())
+        withTruth.truth = (fs::path(o.dataDir) / "fgnet_talking_face" / "points").string();
+    if (!withTruth.truth.empty() && withFgnet && !fs::is_directory(withTruth.truth))
+        throw UsageError("--truth " + withTruth.truth + ": not a folder");
     if (withImm && !fs::is_directory(imm))
         throw UsageError("--imm " + imm.string() + ": not a folder");
     if (!o.stranger.empty() && !withFgnet)
@@ -632,7 +670,7 @@ int run(const PeopleEvalOptions& o, std::FILE* out)
     }
     FgnetResult fgnetResult;
     if (withFgnet)
-        fgnetResult = runFgnet(o, frames, boxes, fitter, fgnetGallery, csv, out);
+        fgnetResult = runFgnet(withTruth, frames, boxes, fitter, fgnetGallery, csv, out);
     if (!o.stranger.empty() && fgnetResult.ran) {
         const Rate notFranck = runStranger(o, o.stranger, fitter, fgnetGallery, out);
         std::fprintf(out, "people-stranger: not_franck=%s\n",

@@ -8,7 +8,8 @@
 //    "joker" 6 apart), for the persons the demo model was built from and the 10 it left out
 //    (04, 08, ... 40: the honest figure) apart; then the gallery with half the persons (odd,
 //    then even) and every probe of the others: how many are accepted as someone (false accept).
-//  - FGNet's talking face (--frames DIR, or the data folder's): franck enrolled from frames
+//  - FGNet's talking face (--frames DIR [--truth DIR], or the data folder's): franck enrolled from
+//  frames
 //    [0, --enrol-frames), then the rest cut into windows of --window frames, each a new track
 //    whose settled signature must be accepted as franck (IMM's persons enrolled beside him);
 //    with --stranger DIR (a facegen folder) its moving face, someone else, through the same
@@ -28,6 +29,10 @@ struct PeopleEvalOptions {
     std::string dataDir = "../shared/data";
     std::string imm;     ///< default: DATA/imm_face_db ("none": skip)
     std::string frames;  ///< default: DATA/fgnet_talking_face/images ("none": skip)
+    /// Per-frame .pts beside the frames' names: the face whose box holds their centre is the
+    /// sequence's person (default with the default frames: DATA/fgnet_talking_face/points;
+    /// without: the largest face).
+    std::string truth;
     std::string cascade = "/usr/share/opencv4/haarcascades/haarcascade_frontalface_default.xml";
     std::string stranger;      ///< a facegen folder: its moving face must not be taken for franck
     std::string enrol = "1";   ///< IMM types enrolled: "1" or "1,2"

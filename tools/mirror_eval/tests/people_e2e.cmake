@@ -57,3 +57,5 @@ expect_usage_error("--imm .*nowhere: not a folder" --model ${MODEL} --imm ${DATA
 expect_usage_error(".*--window and --max-fits must be >= 1" --model ${MODEL} --data ${DATA} --window 0)
 expect_usage_error("--stranger needs the FGNet run" --model ${MODEL} --data ${DATA} --persons 2
                    --frames none --stranger ${OUT})
+expect_usage_error("--truth .*nowhere: not a folder" --model ${MODEL} --data ${DATA}
+                   --frames ${DATA}/fgnet_talking_face/images --truth ${DATA}/nowhere)
