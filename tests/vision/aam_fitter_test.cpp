@@ -17,6 +17,7 @@
 #include "aam_kernels.hpp"
 #include "aam_synthetic_face.hpp"
 #include "aam_warp.hpp"
+#include "alloc_counter.hpp"
 #include "test_paths.hpp"
 #include "vision/aam_model.hpp"
 
@@ -378,6 +379,111 @@ TEST(AamFitTables, SteepestDescentMatchesTheWarpedImage)
         const double cosine = numeric.dot(analytic) / (numeric.norm() * analytic.norm());
         EXPECT_GT(cosine, k == 2 || k == 3 ? 0.97 : 0.85) << "parameter " << k;
         EXPECT_NEAR(analytic.norm() / numeric.norm(), 1.0, 0.2) << "parameter " << k;
+    }
+}
+
+/// §6: a face's appearance parameters. Against a plain float reference (the same warp, then the
+/// warped image less gain * A0 + bias, over the gain, in double, dotted with each mode as floats):
+/// equal up to the error image's 1/16 grey level. And on a synthetic face drawn with known mode
+/// weights (in standard deviations) at its true shape, gain and bias: the weights come back.
+TEST(AamFitter, AppearanceParametersMatchAPlainReferenceAndTheWeightsAFaceWasDrawnWith)
+{
+    REQUIRE_DEMO_MODEL();
+    const vision::aam::Tables t = vision::aam::buildTables(*demoModel());
+    vision::AamFitter fitter(*demoModel());
+    ASSERT_EQ(fitter.appearanceModeCount(), static_cast<int>(t.appearanceModes.size()));
+    std::mt19937 random(11);
+    SyntheticFaceSpec spec = posedSpec(0.f, 0.f, 0.f, random);
+    spec.appearanceWeights = {1.2f, -0.8f, 0.5f, -0.3f};
+    const SyntheticFace face = renderSyntheticFace(*demoModel(), spec, kWidth, kHeight);
+    vision::AamFaceState state = stateAt(t, face, 0.f);
+    state.gain = spec.gain;
+    state.bias = spec.bias;
+    std::array<float, 64> ours{};
+    const int n = fitter.appearanceParameters(face.image.view(), state, ours);
+    ASSERT_EQ(n, std::min(64, fitter.appearanceModeCount()));
+    ASSERT_GE(n, 4);
+
+    // The plain reference.
+    const auto v = static_cast<std::size_t>(t.vertices);
+    const auto pixels = static_cast<std::size_t>(t.spanPixels);
+    std::vector<float> shape(2 * v);
+    vision::aam::shapeFromParameters(t, state.q.data(), state.p.data(), shape.data());
+    std::vector<vision::aam::TriangleAffine> maps(static_cast<std::size_t>(t.triangles));
+    vision::aam::triangleAffines(t, shape.data(), maps.data());
+    std::vector<std::int16_t> warped(pixels);
+    vision::aam::warpImage(t, maps.data(), face.image.view(), vision::AamSampling::Bilinear,
+                           warped.data());
+    const vision::AamModel& model = *demoModel();
+    std::vector<std::size_t> spanAt(static_cast<std::size_t>(model.frameWidth) * model.frameHeight);
+    for (const vision::aam::WarpRun& run : t.runs)
+        for (int x = 0; x < run.count; ++x)
+            spanAt[static_cast<std::size_t>(run.y) * model.frameWidth + run.x0 + x] =
+                run.offset + static_cast<std::size_t>(x);
+    for (int k = 0; k < n; ++k) {
+        const vision::aam::Quantised& mode = t.appearanceModes[static_cast<std::size_t>(k)];
+        double along = 0;
+        for (std::size_t i = 0; i < pixels; ++i) {
+            if (t.mask[i] == 0)
+                continue;
+            const double a0 = t.meanAppearance[i] / double{vision::aam::kAppearanceOne};
+            const double delta = (warped[i] - spec.bias - spec.gain * a0) / spec.gain;
+            along += mode.values[i] / double{mode.scale} * delta;
+        }
+        const double reference = along / t.appearanceModeStd[static_cast<std::size_t>(k)];
+        EXPECT_NEAR(ours[static_cast<std::size_t>(k)], reference, 0.01) << "mode " << k;
+        // The face was drawn with these weights of the model's own modes (0 beyond them): what
+        // they put along this mode (the model's modes with the mean's direction taken out, over
+        // the fitted pixels) comes back, up to the rounding of the drawn grey levels.
+        double drawn = 0;
+        for (std::size_t j = 0; j < spec.appearanceWeights.size(); ++j) {
+            double dot = 0;
+            for (std::size_t i = 0; i < model.pixels.size(); ++i) {
+                const std::size_t at =
+                    spanAt[model.pixels[i].y * model.frameWidth + model.pixels[i].x];
+                if (t.mask[at] != 0)
+                    dot += mode.values[at] / double{mode.scale} *
+                           model.appearanceModes[j * model.pixels.size() + i];
+            }
+            drawn += spec.appearanceWeights[j] * std::sqrt(model.appearanceVariances[j]) * dot;
+        }
+        drawn /= t.appearanceModeStd[static_cast<std::size_t>(k)];
+        EXPECT_NEAR(ours[static_cast<std::size_t>(k)], drawn, 0.05) << "mode " << k;
+        if (k >= 1 && k < 4) {
+            EXPECT_NEAR(ours[static_cast<std::size_t>(k)], spec.appearanceWeights[k], 0.1)
+                << "mode " << k << " is nearly the model's own";
+        }
+    }
+    EXPECT_EQ(fitter.appearanceParameters(face.image.view(), vision::AamFaceState{}, ours), 0)
+        << "no gain: no parameters";
+    std::array<float, 2> two{};
+    EXPECT_EQ(fitter.appearanceParameters(face.image.view(), state, two), 2);
+    EXPECT_EQ(two[0], ours[0]);
+}
+
+TEST(AamFitter, AppearanceParametersAllocateNothing)
+{
+    REQUIRE_DEMO_MODEL();
+    if (!testing_support::allocationCountingAvailable())
+        GTEST_SKIP() << "allocation counting is not available in this build";
+    const vision::aam::Tables t = vision::aam::buildTables(*demoModel());
+    std::mt19937 random(12);
+    const SyntheticFaceSpec spec = posedSpec(10.f, 0.f, 5.f, random);
+    const SyntheticFace face = renderSyntheticFace(*demoModel(), spec, kWidth, kHeight);
+    vision::AamFaceState state = stateAt(t, face, 0.f);
+    state.gain = spec.gain;
+    state.bias = spec.bias;
+    for (const vision::AamSampling sampling :
+         {vision::AamSampling::Bilinear, vision::AamSampling::Nearest}) {
+        vision::AamFitterOptions options;
+        options.appearanceSampling = sampling;
+        vision::AamFitter fitter(*demoModel(), options);
+        std::array<float, 64> out{};
+        testing_support::AllocationScope scope;
+        const int n = fitter.appearanceParameters(face.image.view(), state, out);
+        EXPECT_GT(n, 0);
+        EXPECT_EQ(scope.counts().cxxNew, 0);
+        EXPECT_EQ(scope.counts().ownMalloc, 0);
     }
 }
 

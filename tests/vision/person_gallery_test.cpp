@@ -45,7 +45,8 @@ TEST(PersonGallery, EmptySignaturesBadIdsAndAFullGalleryAreRefused)
     for (int id = 1; id <= vision::PersonGallery::kMaxPeople; ++id)
         ASSERT_TRUE(gallery.enrol(id, signature(0.001f * id, 0.f)));
     EXPECT_FALSE(gallery.enrol(1000, signature(0.f, 0.f))) << "full";
-    EXPECT_TRUE(gallery.enrol(5, signature(0.2f, 1.f))) << "a known person is replaced, even when full";
+    EXPECT_TRUE(gallery.enrol(5, signature(0.2f, 1.f)))
+        << "a known person is replaced, even when full";
 }
 
 TEST(PersonGallery, ForgetRemovesOnlyThatPerson)
@@ -60,4 +61,36 @@ TEST(PersonGallery, ForgetRemovesOnlyThatPerson)
     EXPECT_EQ(gallery.score(1, signature(0.05f, 1.f)), 0.f);
     gallery.clear();
     EXPECT_EQ(gallery.size(), 0);
+}
+
+TEST(PersonGallery, DifferencesCountInHowMuchEachValueVariesWithinAPerson)
+{
+    vision::PersonGalleryOptions options;
+    options.appearanceSpread.fill(1.f);
+    options.appearanceSpread[0] = 2.f;  // mode 0 varies twice as much between one's photographs
+    options.shapeWeight = 0.f;
+    vision::PersonGallery gallery(options);
+    vision::FaceSignature enrolled = signature(0.f, 0.f);
+    ASSERT_TRUE(gallery.enrol(1, enrolled));
+    vision::FaceSignature alongWide = enrolled, alongNarrow = enrolled;
+    alongWide.appearance[0] = 1.f;
+    alongNarrow.appearance[1] = 1.f;
+    EXPECT_GT(gallery.score(1, alongWide), gallery.score(1, alongNarrow));
+    // d^2 = mean of the whitened squares over the 8 values: (1/2)^2 / 8 and 1 / 8.
+    EXPECT_NEAR(gallery.score(1, alongWide), 1.f / (1.f + 0.25f / 8.f), 1e-5f);
+    EXPECT_NEAR(gallery.score(1, alongNarrow), 1.f / (1.f + 1.f / 8.f), 1e-5f);
+    vision::FaceSignature otherShape = enrolled;
+    otherShape.shapeUnits.fill(1.f);
+    EXPECT_EQ(gallery.score(1, otherShape), 1.f) << "shape units turned off";
+}
+
+TEST(PersonGallery, TheDefaultsAreTheMeasuredOnes)
+{
+    const vision::PersonGalleryOptions options;
+    EXPECT_EQ(options.shapeWeight, 0.1f);
+    EXPECT_EQ(options.acceptScore, 0.35f);
+    EXPECT_GT(options.appearanceSpread[0], 1.f) << "the lighting-like first mode varies most";
+    EXPECT_EQ(options.appearanceSpread[vision::kFaceSignatureMaxAppearance - 1], 1.f);
+    for (float s : options.shapeSpread)
+        EXPECT_GT(s, 0.f);
 }

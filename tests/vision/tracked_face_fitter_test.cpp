@@ -8,6 +8,7 @@
 
 #include "aam_demo_model.hpp"
 #include "aam_synthetic_face.hpp"
+#include "alloc_counter.hpp"
 #include "test_paths.hpp"
 #include "vision/aam_model.hpp"
 
@@ -182,6 +183,12 @@ TEST(TrackedFaceFitter, ASignatureSettlesAfterItsFitsAndEnrolmentCanAskForMore)
     }
     ASSERT_GE(settledAt, 0) << "the signature never settled";
     EXPECT_EQ(fitter.fits()[0].signature.samples, 3);
+    const vision::FaceSignature& settled = fitter.fits()[0].signature;
+    EXPECT_GT(settled.appearanceCount, 0) << "the appearance parameters are in the signature";
+    float magnitude = 0.f;
+    for (int i = 0; i < settled.appearanceCount; ++i)
+        magnitude += std::abs(settled.appearance[static_cast<std::size_t>(i)]);
+    EXPECT_GT(magnitude, 0.f);
     fitter.process(face.image.view(), {&tracked, 1});
     EXPECT_EQ(fitter.fits()[0].signature.samples, 3) << "a settled signature no longer changes";
 
@@ -192,4 +199,23 @@ TEST(TrackedFaceFitter, ASignatureSettlesAfterItsFitsAndEnrolmentCanAskForMore)
     fitter.process(face.image.view(), {&tracked, 1});
     EXPECT_TRUE(fitter.fits()[0].signatureSettled);
     EXPECT_EQ(fitter.fits()[0].signature.samples, 5);
+}
+
+TEST(TrackedFaceFitter, CollectingASignatureAllocatesNothing)
+{
+    REQUIRE_DEMO_MODEL();
+    if (!testing_support::allocationCountingAvailable())
+        GTEST_SKIP() << "allocation counting is not available in this build";
+    vision::TrackedFaceFitterOptions options;
+    options.signatureFits = 20;
+    vision::TrackedFaceFitter fitter(*demoModel(), options);
+    const SyntheticFace face = posedFace(5.f, 0.f, 0.f, 0.f);
+    const vision::TrackedFace tracked = trackedFace(3, face.box(4.f), fitter.options().placement);
+    testing_support::AllocationScope scope;
+    for (int frame = 0; frame < 8; ++frame)
+        fitter.process(face.image.view(), {&tracked, 1});
+    EXPECT_EQ(scope.counts().cxxNew, 0);
+    EXPECT_EQ(scope.counts().ownMalloc, 0);
+    EXPECT_GT(fitter.fits()[0].signature.samples, 0) << "the signature was collecting";
+    EXPECT_FALSE(fitter.fits()[0].signatureSettled);
 }

@@ -1,12 +1,14 @@
 // mirror-eval: evaluates the vision core on recorded or generated sequences with ground truth.
 // One sub-command per tracker: `card` (§2), `detect` and `track` (§3), `roll` (§4); and
 // `liveness`, the cues that tell a living face from a photograph (§3); `aam`, the Active
-// Appearance Model fit (§5) beside dlib's shape predictor.
+// Appearance Model fit (§5) beside dlib's shape predictor; `people`, who a face is from the fitted
+// model's signature (§6).
 
 #include "aam_eval.hpp"
 #include "card_eval.hpp"
 #include "detect_eval.hpp"
 #include "liveness_eval.hpp"
+#include "people_eval.hpp"
 #include "roll_eval.hpp"
 #include "shared_data.hpp"
 #include "tool_cli.hpp"
@@ -202,10 +204,52 @@ int main(int argc, char** argv)
     aamCmd->add_option("--max-frames", aam.maxFrames, "only the first N frames (0: all)");
     aamCmd->add_flag("--per-frame", aam.perFrame, "one line per frame");
 
+    mirror_eval::PeopleEvalOptions people;
+    CLI::App* peopleCmd = app.add_subcommand(
+        "people",
+        "recognition from the fitted AAM's signature (§6): IMM's 40 persons enrolled from one "
+        "or two photographs and probed with the others, FGNet's franck through his sequence; "
+        "Viola-Jones boxes, the fit as the firmware runs it");
+    peopleCmd->add_option("--model", people.model, "the .aam model file")->required();
+    people.dataDir = tool_data::defaultDir();
+    peopleCmd->add_option("--data", people.dataDir, "the shared data folder")
+        ->capture_default_str();
+    peopleCmd->add_option("--imm", people.imm, "the IMM folder (default DATA/imm_face_db; none)");
+    peopleCmd->add_option("--frames", people.frames,
+                          "franck's frames (default DATA/fgnet_talking_face/images; none)");
+    peopleCmd->add_option("--truth", people.truth,
+                          "per-frame .pts for --frames: the face holding their centre is franck "
+                          "(default with the default frames: DATA/fgnet_talking_face/points)");
+    peopleCmd->add_option("--stranger", people.stranger,
+                          "a facegen folder whose moving face must not be taken for franck");
+    peopleCmd->add_option("--cascade", people.cascade, "the detector's Haar cascade")
+        ->capture_default_str();
+    peopleCmd->add_option("--enrol", people.enrol, "IMM types a person is enrolled from: 1 or 1,2")
+        ->capture_default_str();
+    peopleCmd->add_option("--persons", people.persons, "IMM: only persons 1..N")
+        ->capture_default_str();
+    peopleCmd->add_option("--enrol-frames", people.enrolFrames, "FGNet: franck's enrolment frames")
+        ->capture_default_str();
+    peopleCmd->add_option("--window", people.window, "FGNet: frames per recognition track")
+        ->capture_default_str();
+    peopleCmd->add_option("--max-frames", people.maxFrames, "FGNet: only the first N (0: all)");
+    peopleCmd->add_option("--max-fits", people.maxFits, "fits of a still image at most")
+        ->capture_default_str();
+    peopleCmd->add_option("--accept", people.acceptScore, "the gallery's acceptScore (measuring)");
+    peopleCmd->add_option("--shape-weight", people.shapeWeight, "the gallery's shapeWeight");
+    peopleCmd->add_option("--appearance-weight", people.appearanceWeight,
+                          "the gallery's appearanceWeight");
+    peopleCmd->add_option("--dump", people.dump, "write every signature to this CSV");
+    peopleCmd->add_flag("--nearest", people.nearest,
+                        "the appearance parameters from the nearest pixel (the fit's sampling)");
+    peopleCmd->add_flag("--per-image", people.perImage, "say why a photograph has no signature");
+
     if (const int code = tool_cli::parse(app, argc, argv); code >= 0)
         return code;
     if (aamCmd->parsed())
         return mirror_eval::runAamEval(aam, stdout, stderr);
+    if (peopleCmd->parsed())
+        return mirror_eval::runPeopleEval(people, stdout, stderr);
     if (cardCmd->parsed())
         return mirror_eval::runCardEval(card, stdout, stderr);
     if (detectCmd->parsed()) {

@@ -215,8 +215,10 @@ Eigen::Vector2f gradientAt(const std::vector<float>& a0, int width, int height, 
 /// squares, varies along A0); the fit's gain carries that direction, and a mode that also carried
 /// it would make the gain unobservable: projected out of the error, it would leave the fit free to
 /// raise the gain and shrink the residual with it.
-Eigen::MatrixXf modesOrthogonalToMean(const AamModel& m, const std::vector<bool>& fitted)
+Eigen::MatrixXf modesOrthogonalToMean(const AamModel& m, const std::vector<bool>& fitted,
+                                      std::vector<float>& keptStd)
 {
+    keptStd.clear();
     const auto pixels = static_cast<Eigen::Index>(m.pixels.size());
     Eigen::VectorXf mean = Eigen::Map<const Eigen::VectorXf>(m.meanAppearance.data(), pixels);
     Eigen::MatrixXf modes = Eigen::Map<const Eigen::MatrixXf>(
@@ -228,6 +230,7 @@ Eigen::MatrixXf modesOrthogonalToMean(const AamModel& m, const std::vector<bool>
         }
     }
     const Eigen::VectorXf unitMean = mean.normalized();
+    const Eigen::MatrixXf original = modes;
     Eigen::Index kept = 0;
     for (Eigen::Index k = 0; k < modes.cols(); ++k) {
         Eigen::VectorXf a = modes.col(k);
@@ -237,6 +240,17 @@ Eigen::MatrixXf modesOrthogonalToMean(const AamModel& m, const std::vector<bool>
         if (a.norm() < 0.1f)
             continue;
         modes.col(kept++) = a.normalized();
+    }
+    // Each kept direction's standard deviation over the training faces: the model's variances
+    // projected on it (the builder's first mode is mostly the mean's direction, so its own
+    // variance would overstate what is left of it).
+    for (Eigen::Index k = 0; k < kept; ++k) {
+        double variance = 0;
+        for (Eigen::Index j = 0; j < original.cols(); ++j) {
+            const double along = modes.col(k).dot(original.col(j));
+            variance += m.appearanceVariances[static_cast<std::size_t>(j)] * along * along;
+        }
+        keptStd.push_back(static_cast<float>(std::sqrt(std::max(variance, 1e-12))));
     }
     return modes.leftCols(kept);
 }
@@ -284,7 +298,7 @@ void steepestDescent(Tables& t, const AamModel& m, const std::vector<int>& spanO
             sd.row(i).setZero();
     }
     // Eq. 74: the appearance modes projected out.
-    const Eigen::MatrixXf modes = modesOrthogonalToMean(m, fitted);
+    const Eigen::MatrixXf modes = modesOrthogonalToMean(m, fitted, t.appearanceModeStd);
     sd -= modes * (modes.transpose() * sd);
     for (int j = 0; j < count; ++j) {
         Eigen::VectorXf span = Eigen::VectorXf::Zero(t.spanPixels);

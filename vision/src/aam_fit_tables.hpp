@@ -62,7 +62,10 @@ struct Tables {
     /// the appearance modes (eq. 74), each quantised to +-kSteepestMax.
     std::vector<Quantised> steepest;
     std::vector<Quantised> appearanceModes;  ///< A_i quantised (the fit error's projection)
-    Eigen::MatrixXd hessian2d;               ///< of `steepest` as quantised
+    /// Each kept mode's standard deviation over the training faces (the model's variances
+    /// projected on it): the unit of a signature's appearance parameters (§6).
+    std::vector<float> appearanceModeStd;
+    Eigen::MatrixXd hessian2d;  ///< of `steepest` as quantised
 
     // The CANDIDE head.
     std::vector<Eigen::Vector3f> headVertices;  ///< g0

@@ -240,6 +240,37 @@ int AamFitter::vertexCount() const noexcept
 {
     return tables_->vertices;
 }
+int AamFitter::appearanceModeCount() const noexcept
+{
+    return static_cast<int>(tables_->appearanceModes.size());
+}
+
+// §6: the fitted face's appearance parameters. The same steps as one iteration's error image (the
+// warp, the mean appearance under gain and bias subtracted in 1/16 grey levels), then one exact
+// integer dot product per mode; only the division into each mode's std is floating point.
+int AamFitter::appearanceParameters(ConstImageView grey, const AamFaceState& face,
+                                    std::span<float> out) noexcept
+{
+    const aam::Tables& t = *tables_;
+    Scratch& s = *scratch_;
+    const int n = static_cast<int>(std::min(out.size(), t.appearanceModes.size()));
+    if (grey.empty() || grey.format != PixelFormat::Gray8 || n == 0 || !(face.gain > 0.f))
+        return 0;
+    aam::shapeFromParameters(t, face.q.data(), face.p.data(), s.shape.data());
+    aam::triangleAffines(t, s.shape.data(), s.triangleMaps.data());
+    aam::warpImage(t, s.triangleMaps.data(), grey, options_.appearanceSampling, s.warped.data());
+    errorImageOf(t, face, s.warped.data(), s.error.data());
+    const double toAppearance = 1.0 / (aam::kErrorOne * static_cast<double>(face.gain));
+    for (int k = 0; k < n; ++k) {
+        const aam::Quantised& mode = t.appearanceModes[static_cast<std::size_t>(k)];
+        const double along =
+            static_cast<double>(aam::dotProduct(mode.values.data(), s.error.data(), t.spanPixels)) *
+            toAppearance / mode.scale;
+        out[static_cast<std::size_t>(k)] = static_cast<float>(
+            along / std::max(t.appearanceModeStd[static_cast<std::size_t>(k)], 1e-6f));
+    }
+    return n;
+}
 
 void AamFitter::start(AamFaceState& face, const AamStart& start) const noexcept
 {

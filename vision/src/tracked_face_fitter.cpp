@@ -144,7 +144,7 @@ void TrackedFaceFitter::fitFace(ConstImageView grey, const TrackedFace& face, Sl
                     width <= options_.maxWidthRatio * box.width;
     // A failed fit is not carried on: the next frame starts again from the tracker's box.
     slot.tracking = out.ok();
-    updateSignature(slot, out);
+    updateSignature(grey, slot, out);
 }
 
 bool TrackedFaceFitter::collectSignature(int faceId, int fits) noexcept
@@ -159,8 +159,10 @@ bool TrackedFaceFitter::collectSignature(int faceId, int fits) noexcept
 }
 
 // §6: the signature is taken only from ok fits whose shape units are frozen (the person's
-// proportions, not a first guess), averaged as a running mean so it never needs a buffer.
-void TrackedFaceFitter::updateSignature(Slot& slot, FaceFit& out) noexcept
+// proportions, not a first guess), averaged as a running mean so it never needs a buffer. The
+// appearance parameters (a warp and one dot product per mode) are computed only for those fits,
+// so a settled track costs nothing more per frame.
+void TrackedFaceFitter::updateSignature(ConstImageView grey, Slot& slot, FaceFit& out) noexcept
 {
     const int target = slot.signatureTarget > 0 ? slot.signatureTarget : options_.signatureFits;
     FaceSignature& sig = slot.signature;
@@ -169,6 +171,20 @@ void TrackedFaceFitter::updateSignature(Slot& slot, FaceFit& out) noexcept
         const float w = 1.f / static_cast<float>(sig.samples + 1);
         for (int i = 0; i < kAamShapeUnits; ++i)
             sig.shapeUnits[i] += w * (slot.state.head.sigma[i] - sig.shapeUnits[i]);
+        std::array<float, kFaceSignatureMaxAppearance> appearance{};
+        const int count = fitter_.appearanceParameters(grey, slot.state, appearance);
+        if (sig.samples == 0 || count != sig.appearanceCount) {
+            // The first sample (or, never with one model, a count that changed): start afresh.
+            sig.appearanceCount = count;
+            for (int i = 0; i < count; ++i)
+                sig.appearance[static_cast<std::size_t>(i)] =
+                    appearance[static_cast<std::size_t>(i)];
+        } else {
+            for (int i = 0; i < count; ++i)
+                sig.appearance[static_cast<std::size_t>(i)] +=
+                    w * (appearance[static_cast<std::size_t>(i)] -
+                         sig.appearance[static_cast<std::size_t>(i)]);
+        }
         ++sig.samples;
     }
     out.signature = sig;

@@ -18,6 +18,7 @@
 #include <array>
 #include <cstdint>
 #include <memory>
+#include <span>
 
 namespace vision {
 
@@ -50,6 +51,9 @@ struct AamFitterOptions {
     /// The shape units (the person's proportions) are fitted on a track's first fits and then
     /// frozen; the animation units keep following the face (5.3.3).
     int fitsBeforeShapeFreeze = 3;
+    /// How appearanceParameters() samples the image: it runs only while a face's signature is
+    /// collected (a few frames per track), so it can afford interpolation.
+    AamSampling appearanceSampling = AamSampling::Bilinear;
 };
 
 /// Where a face's mesh starts, from a face box (the tracker's position, scale and roll): the
@@ -130,6 +134,19 @@ public:
     /// One fit of `face` on `grey` (Gray8), from its state; the state keeps the result. A new
     /// face (no fits yet) fits its similarity first, then everything (5.3.3).
     AamFitResult fit(ConstImageView grey, AamFaceState& face) noexcept;
+
+    /// The appearance parameters of `face` in its fitted state on `grey` (§6; dissertation 6.2):
+    /// the image warped to the mean shape by the state's shape (options().appearanceSampling),
+    /// less the mean appearance under the state's gain and bias and divided by the gain, as the
+    /// fit measures its error, projected on the appearance modes (those the fit projects out:
+    /// orthogonal to the mean appearance), each divided by its mode's standard deviation over the
+    /// training faces. Writes min(out.size(), appearanceModeCount()) values and returns how many
+    /// (0 for an image that is not Gray8 or a state without a gain). Integer warp and dot
+    /// products (aam_kernels.hpp), the fitter's scratch: no allocation, no throw.
+    int appearanceParameters(ConstImageView grey, const AamFaceState& face,
+                             std::span<float> out) noexcept;
+    /// The appearance modes appearanceParameters() projects on.
+    int appearanceModeCount() const noexcept;
 
     const AamFitterOptions& options() const noexcept;
     void setSampling(AamSampling sampling) noexcept;

@@ -11,12 +11,21 @@
 
 namespace vision {
 
+/// How much one person's signature varies between photographs of them, per value (its std):
+/// the distance is measured in these units (whitened). Measured on the demo model's training
+/// persons (person_gallery.cpp); a value beyond the table counts in its mode's own std (1).
+std::array<float, kFaceSignatureMaxAppearance> defaultAppearanceSpread() noexcept;
+std::array<float, kAamShapeUnits> defaultShapeSpread() noexcept;
+
 struct PersonGalleryOptions {
     /// A face whose best score is below this is nobody enrolled (a guest).
-    float acceptScore = 0.5f;
-    /// What the distance weighs (0 turns a part off): the shape units and the appearance.
-    float shapeWeight = 1.f;
+    float acceptScore = 0.35f;
+    /// What the distance weighs (0 turns a part off): the shape units and the appearance. The
+    /// shape units help a little at a tenth of the appearance's weight (person_gallery.cpp).
+    float shapeWeight = 0.1f;
     float appearanceWeight = 1.f;
+    std::array<float, kFaceSignatureMaxAppearance> appearanceSpread = defaultAppearanceSpread();
+    std::array<float, kAamShapeUnits> shapeSpread = defaultShapeSpread();
 };
 
 /// The best match of a signature: the person (0: a guest) and how sure, 0..1 (1: identical).

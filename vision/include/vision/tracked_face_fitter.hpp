@@ -87,7 +87,7 @@ private:
     };
     Slot* slotFor(int faceId) noexcept;
     void fitFace(ConstImageView grey, const TrackedFace& face, Slot& slot, FaceFit& out) noexcept;
-    void updateSignature(Slot& slot, FaceFit& out) noexcept;
+    void updateSignature(ConstImageView grey, Slot& slot, FaceFit& out) noexcept;
 
     AamFitter fitter_;
     TrackedFaceFitterOptions options_;
