@@ -2,7 +2,8 @@
 // on the FGNet talking face: `person add` is refused without a model, with no face or two faces
 // in view, with a bad or taken name; it enrols the one face in view; after a restart (a new
 // FrameLoop reading the state folder) the person is recognised and wears their own overlay, and
-// on their birthday the birthday overlay; rename and forget (leaving no trace); the guest button;
+// on their birthday the birthday overlay; files of another model, corrupt or unreadable are
+// skipped at start with one warning each; rename and forget (leaving no trace); the guest button;
 // and the loop with a known person in view allocates nothing.
 #include "alloc_counter.hpp"
 #include "fake_console.hpp"
@@ -26,6 +27,7 @@
 #include <functional>
 #include <memory>
 #include <string>
+#include <vector>
 
 namespace {
 
@@ -314,6 +316,45 @@ TEST_F(PeopleLoop, AKeptPersonIsRecognisedAfterARestartWithTheirOverlayAndBirthd
         EXPECT_EQ(selection.ruleFor(face), firmware::OverlayRule::Birthday);
         EXPECT_NE(m.run("status").find("by birthday"), std::string::npos) << m.console.output();
     }
+}
+
+TEST_F(PeopleLoop, FilesOfAnotherModelCorruptOrUnreadableAreSkippedAtStartWithAWarningEach)
+{
+    const firmware::Config config = peopleConfig("people_skipped");
+    const std::string dir = config.state.dir + "/people/";
+    {
+        Mirror m(config);
+        enrol(m, "anna");
+    }
+    std::filesystem::copy_file(dir + "anna.toml", dir + "other.toml");
+    {
+        std::FILE* f = std::fopen((dir + "foreign.toml").c_str(), "w");
+        std::fputs("name = \"foreign\"\nmodel = \"crc32:00000000\"\nsamples = 1\n", f);
+        std::fclose(f);
+        f = std::fopen((dir + "broken.toml").c_str(), "w");
+        std::fputs("name = \"broken\"\nshape = [", f);
+        std::fclose(f);
+    }
+    ASSERT_EQ(::mkfifo((dir + "fifo.toml").c_str(), 0600), 0);
+    Mirror m(config);
+    std::vector<std::string> warnings;
+    firmware::forEachRecentLogLine(
+        firmware::kLogRingLines,
+        [](const char* line, void* context) {
+            static_cast<std::vector<std::string>*>(context)->emplace_back(line);
+        },
+        &warnings, firmware::LogLevel::Warn);
+    for (const char* name : {"other", "foreign", "broken", "fifo"}) {
+        int lines = 0;
+        for (const std::string& w : warnings)
+            lines += w.find(dir + name + ".toml") != std::string::npos;
+        EXPECT_EQ(lines, 1) << name << ": one warning naming it";
+    }
+    EXPECT_NE(m.run("person list").find("people: 1 known: anna"), std::string::npos)
+        << m.console.output();
+    ASSERT_TRUE(m.stepUntil([&] { return m.settled(); }, 200));
+    ASSERT_TRUE(m.loop.step());
+    EXPECT_NE(m.run("faces").find("person=anna"), std::string::npos) << m.console.output();
 }
 
 TEST_F(PeopleLoop, RenameAndForgetLeaveNoTrace)
