@@ -222,6 +222,8 @@ void FrameLoop::formatStatusJson(Reply& reply) const noexcept
                      static_cast<double>(card_->confidence()));
     if (faces_)
         reply.printf(",\"faces\":{\"shown\":%d}", faces_->shown());
+    if (people_)
+        people_->formatJson(state_.faces, reply);
     reply.append(",\"stages\":[");
     for (std::size_t i = 0; i < stepCount_; ++i) {
         const LatencyHistogram& h = timings_[i].total;

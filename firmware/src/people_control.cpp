@@ -369,4 +369,23 @@ void PeopleControl::formatStatus(std::span<const vision::TrackedFace> faces,
     formatFaces(faces, reply);
 }
 
+void PeopleControl::formatJson(std::span<const vision::TrackedFace> faces,
+                               Reply& reply) const noexcept
+{
+    reply.printf(",\"people\":{\"known\":%d,\"faces\":[", known());
+    bool first = true;
+    for (const vision::TrackedFace& f : faces) {
+        if (!f.shown())
+            continue;
+        // Names are of a safe charset (checkPersonName): nothing to escape.
+        const char* name = aam_ ? nameOf(f.id) : nullptr;
+        const Track* t = trackFor(f.id);
+        reply.printf("%s{\"id\":%d,\"person\":%s%s%s,\"score\":%.2f}", first ? "" : ",", f.id,
+                     name ? "\"" : "", name ? name : "null", name ? "\"" : "",
+                     t && name ? static_cast<double>(t->match.score) : 0.0);
+        first = false;
+    }
+    reply.append("]}");
+}
+
 }  // namespace firmware

@@ -51,6 +51,9 @@ public:
     void formatFaces(std::span<const vision::TrackedFace> faces, Reply& reply) const noexcept;
     /// `people: N known` and the face lines.
     void formatStatus(std::span<const vision::TrackedFace> faces, Reply& reply) const noexcept;
+    /// For `status --json`: `,"people":{"known":N,"faces":[{"id":1,"person":"anna","score":0.91}]}`
+    /// ("person" null while undecided, "guest" for nobody known).
+    void formatJson(std::span<const vision::TrackedFace> faces, Reply& reply) const noexcept;
 
     int known() const noexcept;
     /// Who face `faceId` is: a name, "guest", or null while it is not decided yet.

@@ -280,6 +280,11 @@ TEST_F(PeopleLoop, AKeptPersonIsRecognisedAfterARestartWithTheirOverlayAndBirthd
         const std::string status = m.run("status");
         EXPECT_NE(status.find("by person"), std::string::npos) << status;
         EXPECT_NE(status.find("people: 1 known"), std::string::npos) << status;
+        const std::string json = m.run("status --json");
+        EXPECT_NE(json.find("\"people\":{\"known\":1,\"faces\":[{\"id\":" + std::to_string(face) +
+                            ",\"person\":\"anna\",\"score\":"),
+                  std::string::npos)
+            << json;
 
         // Her birthday: the person rule (her own overlay) comes first; without one, the birthday.
         EXPECT_NE(m.run("person birthday anna " + today()).find("anna's birthday is " + today()),
