@@ -15,11 +15,12 @@ PeopleControl::PeopleControl(const Config& config, vision::AamStage* aam, std::u
                              OverlaySelection* selection)
     : aam_(aam),
       selection_(selection),
-      store_(config.state.dir, modelId),
+      // Without a model nobody is enrolled: no folder made for them.
+      store_(config.state.dir, modelId, aam != nullptr),
       enrolFits_(config.people.enrolFits),
       enrolTimeoutNs_(static_cast<std::int64_t>(config.people.enrolTimeoutS) * 1'000'000'000)
 {
-    if (!store_.usable())
+    if (aam_ != nullptr && !store_.usable())
         MIRROR_LOG_WARN("people: %s; nobody is kept", store_.lastError());
     if (selection_) {
         const std::string& birthday = config.days.birthday;

@@ -172,9 +172,13 @@ bool copyName(std::string_view text, char* out, std::size_t size) noexcept
     return true;
 }
 
-PersonStore::PersonStore(const std::string& stateDir, std::uint32_t modelId)
+PersonStore::PersonStore(const std::string& stateDir, std::uint32_t modelId, bool create)
     : dir_(stateDir + "/people"), modelId_(modelId)
 {
+    if (!create) {
+        std::snprintf(error_, sizeof error_, "%s: not made", dir_.c_str());
+        return;
+    }
     usable_ = createStateFolder(dir_, error_, sizeof error_);
     if (usable_)
         ::chmod(dir_.c_str(), 0700);  // who the mirror knows is nobody else's business

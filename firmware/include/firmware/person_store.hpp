@@ -54,9 +54,9 @@ class PersonStore {
 public:
     static constexpr int kMaxPeople = vision::PersonGallery::kMaxPeople;
 
-    /// `[state] dir`/people, made (mode 0700) if missing; `modelId` names the AAM model
-    /// (PersonStore::modelIdOf). Never throws: a folder that cannot be made is lastError().
-    PersonStore(const std::string& stateDir, std::uint32_t modelId);
+    /// `[state] dir`/people, made (mode 0700) if missing and `create`; `modelId` names the AAM
+    /// model (PersonStore::modelIdOf). Never throws: a folder that cannot be made is lastError().
+    PersonStore(const std::string& stateDir, std::uint32_t modelId, bool create = true);
 
     const std::string& dir() const noexcept { return dir_; }
     bool usable() const noexcept { return usable_; }
