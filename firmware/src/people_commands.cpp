@@ -14,13 +14,14 @@ void PeopleControl::command(const Args& args, std::span<const vision::TrackedFac
     const int what =
         args.size() == 1 ? 0 : args.choice(1, {"list", "add", "rename", "forget", "birthday"});
     const std::size_t words[] = {2, 3, 4, 3, 4};  // each form's words with "person"
+    static constexpr const char* kForms[] = {"list", "add NAME", "rename OLD NEW",
+                                             "forget NAME|--all", "birthday NAME MM-DD|none"};
     if (what < 0) {
         reply.usageError("unknown '%.*s'", Args::shown(args[1]), args[1].data());
         return;
     }
     if (args.size() != words[what] && !(what == 0 && args.size() == 1)) {
-        reply.usageError("person %.*s takes %zu word(s)", Args::shown(args[1]), args[1].data(),
-                         words[what] - 2);
+        reply.usageError("expected person %s", kForms[what]);
         return;
     }
     if (aam_ == nullptr && what != 0) {

@@ -219,6 +219,12 @@ TEST_F(PeopleLoop, EnrolmentIsRefusedWithoutAModelWithNoFaceOrTwoFacesAndBadName
         EXPECT_NE(m.run("person add anna").find("error: person add: no face in view"),
                   std::string::npos)
             << m.console.output();
+        EXPECT_NE(m.run("person add").find("error: expected person add NAME; usage: person ["),
+                  std::string::npos)
+            << m.console.output();
+        EXPECT_NE(m.run("person birthday x").find("error: expected person birthday NAME MM-DD"),
+                  std::string::npos)
+            << m.console.output();
         ASSERT_TRUE(m.stepUntil([&] { return m.shownFace() != 0; }, 60));
         for (const char* bad : {"person add ../etc", "person add guest", "person add -x",
                                 "person add abcdefghijklmnopqrstuvwxyz0123456789"})
