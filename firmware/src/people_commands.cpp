@@ -86,7 +86,7 @@ void PeopleControl::addCommand(const Args& args, std::span<const vision::Tracked
     const char* why = "";
     // The name first: a wrong name is wrong whoever stands there.
     if (!checkPersonName(name, why)) {
-        reply.printf("error: person add: '%.*s': %s\n", Args::shown(name), name.data(), why);
+        reply.usageError("person add: '%.*s': %s", Args::shown(name), name.data(), why);
         return;
     }
     if (shown != 1) {
@@ -113,7 +113,7 @@ void PeopleControl::renameCommand(const Args& args, Reply& reply) noexcept
         return;
     }
     if (!checkPersonName(to, why)) {
-        reply.printf("error: person rename: '%.*s': %s\n", Args::shown(to), to.data(), why);
+        reply.usageError("person rename: '%.*s': %s", Args::shown(to), to.data(), why);
         return;
     }
     if (find(to) != 0 || (enrolment_.active && to == enrolment_.name)) {
