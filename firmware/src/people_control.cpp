@@ -89,7 +89,7 @@ const char* PeopleControl::nameOf(int faceId) const noexcept
                                  : "guest";
 }
 
-const char* PeopleControl::fail(const char* format, ...) noexcept
+const char* PeopleControl::say(const char* format, ...) noexcept
 {
     va_list args;
     va_start(args, format);
@@ -129,33 +129,33 @@ bool PeopleControl::startEnrolment(std::string_view name, int faceId,
 {
     const char* why = "";
     if (aam_ == nullptr) {
-        fail("no AAM model ([faces] model): the mirror cannot tell faces apart");
+        say("no AAM model ([faces] model): the mirror cannot tell faces apart");
         return false;
     }
     if (enrolment_.active) {
-        fail("still enrolling %s; wait for it to finish", enrolment_.name);
+        say("still enrolling %s; wait for it to finish", enrolment_.name);
         return false;
     }
     if (!checkPersonName(name, why)) {
-        fail("'%.*s': %s", Args::shown(name), name.data(), why);
+        say("'%.*s': %s", Args::shown(name), name.data(), why);
         return false;
     }
     if (find(name) != 0) {
-        fail("'%.*s' is taken (person rename or person forget first)", Args::shown(name),
-             name.data());
+        say("'%.*s' is taken (person rename or person forget first)", Args::shown(name),
+            name.data());
         return false;
     }
     if (freeId() == 0) {
-        fail("the mirror knows %d people already, the most it keeps", PersonStore::kMaxPeople);
+        say("the mirror knows %d people already, the most it keeps", PersonStore::kMaxPeople);
         return false;
     }
     if (!store_.usable()) {
-        fail("nowhere to keep them: %s", store_.lastError());
+        say("nowhere to keep them: %s", store_.lastError());
         return false;
     }
     const vision::FaceFit* fit = vision::fitFor(fits, faceId);
     if (fit == nullptr || !aam_->fitter().collectSignature(faceId, enrolFits_)) {
-        fail("face %d is not fitted yet; try again in a moment", faceId);
+        say("face %d is not fitted yet; try again in a moment", faceId);
         return false;
     }
     enrolment_ = Enrolment{};
@@ -182,14 +182,14 @@ const char* PeopleControl::advanceEnrolment(std::span<const vision::TrackedFace>
     const int have = fit ? fit->signature.samples - e.startSamples : 0;
     if (!present || fit == nullptr) {
         e.active = false;
-        return fail("person add %s: failed: the face left after %d of %d fits", e.name,
-                    std::max(have, 0), enrolFits_);
+        return say("person add %s: failed: the face left after %d of %d fits", e.name,
+                   std::max(have, 0), enrolFits_);
     }
     if (fit->signatureSettled && have >= enrolFits_) {
         e.active = false;
         const int id = freeId();
         if (id == 0 || find(e.name) != 0)
-            return fail("person add %s: failed: the name was taken meanwhile", e.name);
+            return say("person add %s: failed: the name was taken meanwhile", e.name);
         Person& p = people_[static_cast<std::size_t>(id - 1)];
         p = Person{};
         copyName(e.name, p.name, sizeof p.name);
@@ -197,7 +197,7 @@ const char* PeopleControl::advanceEnrolment(std::span<const vision::TrackedFace>
         if (!store_.save(p)) {
             const char* error = store_.lastError();
             p = Person{};
-            return fail("person add %s: failed: not kept: %s", e.name, error);
+            return say("person add %s: failed: not kept: %s", e.name, error);
         }
         gallery_.enrol(id, p.signature);
         if (Track* t = trackFor(e.faceId)) {
@@ -206,11 +206,11 @@ const char* PeopleControl::advanceEnrolment(std::span<const vision::TrackedFace>
         }
         MIRROR_LOG_INFO("people: enrolled %s from %d fits (face %d)", p.name, p.signature.samples,
                         e.faceId);
-        return fail("enrolled %s from %d fits", p.name, p.signature.samples);
+        return say("enrolled %s from %d fits", p.name, p.signature.samples);
     }
     if (nowNs > e.deadlineNs) {
         e.active = false;
-        return fail(
+        return say(
             "person add %s: failed: only %d of %d fits held in time (face the mirror, hold "
             "still)",
             e.name, std::max(have, 0), enrolFits_);
@@ -313,7 +313,7 @@ const char* PeopleControl::enrolGuest(std::span<const vision::TrackedFace> faces
         if (f.shown() && (!nearest || f.size > nearest->size))
             nearest = &f;
     if (!nearest)
-        return fail("guest button: no face in view");
+        return say("guest button: no face in view");
     char name[kMaxPersonNameLength + 1];
     for (int n = 1; n <= PersonStore::kMaxPeople + 1; ++n) {
         std::snprintf(name, sizeof name, "guest-%d", n);
@@ -323,9 +323,9 @@ const char* PeopleControl::enrolGuest(std::span<const vision::TrackedFace> faces
     if (!startEnrolment(name, nearest->id, fits, nowNs)) {
         char why[sizeof message_];
         std::memcpy(why, message_, sizeof why);
-        return fail("guest button: %s", why);
+        return say("guest button: %s", why);
     }
-    return fail("guest button: enrolling face %d as %s: hold still", nearest->id, name);
+    return say("guest button: enrolling face %d as %s: hold still", nearest->id, name);
 }
 
 void PeopleControl::formatFace(int faceId, Reply& reply) const noexcept

@@ -92,7 +92,8 @@ private:
     void forgetId(int id) noexcept;
     bool save(int id) noexcept;
     void formatFace(int faceId, Reply& reply) const noexcept;
-    const char* fail(const char* format, ...) noexcept __attribute__((format(printf, 2, 3)));
+    /// Writes one line into message_ (printf-style) and returns it.
+    const char* say(const char* format, ...) noexcept __attribute__((format(printf, 2, 3)));
 
     void listCommand(Reply& reply) const noexcept;
     void addCommand(const Args& args, std::span<const vision::TrackedFace> faces,
