@@ -20,6 +20,9 @@
 // own choice ("person") of the faces it acted on (per_face: the target face; global: every face on
 // screen), which by default beats the automatic ones for the life of their tracks: pressing a
 // button always changes what the person in front of the mirror wears.
+// A recognised person's face (PeopleControl) also carries what that person chose on an earlier
+// visit (setKept: offered by the person rule when the face chose nothing on screen) and whether
+// it is their birthday (setBirthday: the birthday rule offers its overlay to such faces alone).
 //
 // A face gets a state when it is first shown (TrackedFace::shown(): confirmed, or missing within
 // the tracker's grace) and loses it when the tracker drops it: with no pose left there is nothing
