@@ -1,6 +1,7 @@
 #include "atomic_file.hpp"
 
 #include <fcntl.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <cerrno>
@@ -28,14 +29,16 @@ bool writeAll(int fd, const char* data, std::size_t size) noexcept
 }  // namespace
 
 bool writeFileAtomically(const char* dir, const char* path, const char* tempPath, const char* data,
-                         std::size_t size, char* error, std::size_t errorCapacity) noexcept
+                         std::size_t size, char* error, std::size_t errorCapacity,
+                         mode_t mode) noexcept
 {
-    const int fd = ::open(tempPath, O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+    const int fd = ::open(tempPath, O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, mode);
     if (fd < 0) {
         std::snprintf(error, errorCapacity, "%s: %s", tempPath, std::strerror(errno));
         return false;
     }
-    const bool written = writeAll(fd, data, size) && ::fsync(fd) == 0;
+    // The umask cannot widen it, but a temp file left by an older run may have kept its mode.
+    const bool written = ::fchmod(fd, mode) == 0 && writeAll(fd, data, size) && ::fsync(fd) == 0;
     const int writeErrno = errno;
     ::close(fd);
     if (!written || ::rename(tempPath, path) != 0) {

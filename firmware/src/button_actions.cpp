@@ -19,6 +19,7 @@ constexpr Word kWords[] = {
     {ButtonAction::TrainCard, "train-card"},
     {ButtonAction::ToggleDebugHud, "toggle-debug"},
     {ButtonAction::Snapshot, "snapshot"},
+    {ButtonAction::EnrolGuest, "enrol-guest"},
 };
 
 void fill(std::array<ButtonAction, ButtonActions::kMaxButtons>& out,
@@ -61,7 +62,7 @@ bool parseButtonAction(std::string_view word, ButtonAction& out) noexcept
 
 const char* buttonActionWords() noexcept
 {
-    return "none, next, prev, off, train-card, toggle-debug, snapshot";
+    return "none, next, prev, off, train-card, toggle-debug, snapshot, enrol-guest";
 }
 
 std::vector<std::string> ButtonActions::defaultShort()
@@ -71,7 +72,7 @@ std::vector<std::string> ButtonActions::defaultShort()
 
 std::vector<std::string> ButtonActions::defaultLong()
 {
-    return {"train-card", "toggle-debug"};
+    return {"train-card", "toggle-debug", "enrol-guest"};
 }
 
 ButtonActions::ButtonActions() : ButtonActions(defaultShort(), defaultLong()) {}

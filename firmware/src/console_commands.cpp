@@ -5,6 +5,8 @@
 #include "firmware/frame_loop.hpp"
 #include "firmware/log.hpp"
 #include "overlay_control.hpp"
+#include "monotonic_clock.hpp"
+#include "people_control.hpp"
 
 #include <algorithm>
 #include <charconv>
@@ -87,7 +89,11 @@ void FrameLoop::registerCommands()
     if (faces_) {
         shell_.add("faces", "faces",
                    "tracked faces: id, state, centre, size, roll, confidence, age",
-                   [this](const Args&, Reply& reply) noexcept { faces_->format(reply); });
+                   [this](const Args&, Reply& reply) noexcept {
+                       faces_->format(reply);
+                       if (people_)
+                           people_->formatFaces(state_.faces, reply);
+                   });
         shell_.add("debug", "debug [on|off]",
                    "show or hide the face debug HUD (boxes, corners, roll)",
                    [this](const Args& args, Reply& reply) noexcept {
@@ -109,6 +115,14 @@ void FrameLoop::registerCommands()
                [this](const Args& args, Reply& reply) noexcept {
                    overlays_->command(args, state_.faces, reply);
                });
+    if (people_)
+        shell_.add("person",
+                   "person [list|add NAME|rename OLD NEW|forget NAME|--all|birthday NAME MM-DD]",
+                   "the people the mirror knows: list, enrol the one face in view, rename, "
+                   "forget (one or --all: files too), birthday (MM-DD or none)",
+                   [this](const Args& args, Reply& reply) noexcept {
+                       people_->command(args, state_.faces, state_.fits, monotonicNs(), reply);
+                   });
     shell_.add("buttons", "buttons", "the GPIO buttons: device and which are pressed now",
                [this](const Args&, Reply& reply) noexcept { buttonsCommand(reply); });
     shell_.add("selftest", "selftest",
@@ -175,6 +189,8 @@ void FrameLoop::formatStatus(Reply& reply) const noexcept
         reply.printf("faces: %d shown\n", faces_->shown());
     if (overlays_)
         overlays_->formatStatus(state_.faces, reply);
+    if (people_)
+        people_->formatStatus(state_.faces, reply);
     reply.printf("%-14s %8s %8s %8s\n", "stage", "p50 ms", "p99 ms", "mean ms");
     for (std::size_t i = 0; i < stepCount_; ++i) {
         const LatencyHistogram& h = timings_[i].total;
@@ -206,6 +222,8 @@ void FrameLoop::formatStatusJson(Reply& reply) const noexcept
                      static_cast<double>(card_->confidence()));
     if (faces_)
         reply.printf(",\"faces\":{\"shown\":%d}", faces_->shown());
+    if (people_)
+        people_->formatJson(state_.faces, reply);
     reply.append(",\"stages\":[");
     for (std::size_t i = 0; i < stepCount_; ++i) {
         const LatencyHistogram& h = timings_[i].total;

@@ -5,6 +5,8 @@
 #include "firmware/frame_loop.hpp"
 #include "firmware/log.hpp"
 #include "overlay_control.hpp"
+#include "people_control.hpp"
+#include "monotonic_clock.hpp"
 
 #include <string_view>
 
@@ -96,6 +98,12 @@ void FrameLoop::runButtonAction(ButtonAction action) noexcept
             break;
         case ButtonAction::Snapshot:
             display_->requestSnapshot();
+            break;
+        case ButtonAction::EnrolGuest:
+            if (people_) {
+                const char* what = people_->enrolGuest(state_.faces, state_.fits, monotonicNs());
+                MIRROR_LOG_INFO("%s", what);
+            }
             break;
     }
 }

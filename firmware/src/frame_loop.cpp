@@ -7,6 +7,7 @@
 #include "firmware/log.hpp"
 #include "monotonic_clock.hpp"
 #include "overlay_control.hpp"
+#include "people_control.hpp"
 #include "pipeline_builder.hpp"
 
 #include <fcntl.h>
@@ -69,6 +70,9 @@ FrameLoop::FrameLoop(const Config& config, std::unique_ptr<platform::FrameSource
     if (stages.faces)
         faces_ = std::make_unique<FaceControl>(*stages.motion, *stages.faces, stages.aam,
                                                *renderer_, config.display.debug);
+    if (stages.faces && config.people.enabled)
+        people_ = std::make_unique<PeopleControl>(config_, stages.aam, stages.modelId,
+                                                  overlays_->selection());
 
     timings_[stepCount_++].name = "wait";
     timings_[stepCount_++].name = "capture";
@@ -99,6 +103,7 @@ FrameLoop::~FrameLoop()
     if (summaryFd_ >= 0)
         ::close(summaryFd_);
     // GL objects must go while the display's context still exists.
+    people_.reset();  // it points at the overlays' selection
     if (renderer_ && display_->beginFrame()) {
         card_.reset();
         overlays_.reset();
@@ -256,6 +261,10 @@ void FrameLoop::handleInputsAndOverlays() noexcept
 {
     pollButtons();
     pollKeys();
+    // Who the faces are, before the overlays decide what they wear.
+    if (people_)
+        if (const char* report = people_->update(state_.faces, state_.fits, monotonicNs()))
+            tellConsoles(report);
     // Fades and smoothing run on the loop's clock: what the viewer sees is wall time.
     overlays_->update(state_.faces, state_.fits, monotonicNs());
 }

@@ -195,10 +195,11 @@ Overlays ([overlay]): hats and glasses from the catalogue (default: the installe
   a hat is adding files. mode "global" (one for everyone) or "per_face" (buttons change the
   nearest face). The last choice is kept in [state] dir/overlay.toml.
 
-Buttons ([buttons], libgpiod): chip = "gpiochip0", lines = [17, 27] (button 1, 2), active_low,
-  bias = "pull-up", debounce_ms, long_press_ms, short_press = ["next", "prev"],
-  long_press = ["train-card", "toggle-debug"]. Raspberry Pi header: button 1 between pin 11
-  (BCM17) and pin 9 (GND), button 2 between pin 13 (BCM27) and pin 14 (GND); no resistors (the
+Buttons ([buttons], libgpiod): chip = "gpiochip0", lines = [17, 27, 22] (button 1, 2, 3),
+  active_low, bias = "pull-up", debounce_ms, long_press_ms, short_press = ["next", "prev"],
+  long_press = ["train-card", "toggle-debug", "enrol-guest"]. Raspberry Pi header: button 1
+  between pin 11 (BCM17) and pin 9 (GND), button 2 between pin 13 (BCM27) and pin 14 (GND),
+  button 3 (the guest button) between pin 15 (BCM22) and pin 20 (GND); no resistors (the
   internal pull-ups are used). A missing or busy chip is one warning; the mirror runs on.
 
 Config: TOML, validated strictly; every problem is printed as FILE:LINE:COL: key: what is wrong.

@@ -293,7 +293,11 @@ void OverlaySelection::decide(Slot& s) const noexcept
     RuleOffers offers;
     if (s.own)
         offers.offer(OverlayRule::Person, s.wanted);
+    else if (s.hasKept)  // the person's choice of an earlier visit
+        offers.offer(OverlayRule::Person, s.kept);
     for (const OverlayRule r : {OverlayRule::Birthday, OverlayRule::Day, OverlayRule::Weather}) {
+        if (r == OverlayRule::Birthday && !s.birthday)
+            continue;
         if (const int o = automatic_[static_cast<std::size_t>(r)]; o >= 0)
             offers.offer(r, o);
     }
@@ -315,6 +319,33 @@ void OverlaySelection::setAutomatic(OverlayRule rule, int overlay) noexcept
 int OverlaySelection::automatic(OverlayRule rule) const noexcept
 {
     return automatic_[static_cast<std::size_t>(rule)];
+}
+
+void OverlaySelection::setKept(int faceId, bool has, int overlay) noexcept
+{
+    if (faceId == 0 || overlay < -1 || overlay >= size())
+        return;
+    if (Slot* s = findSlot(faceId)) {
+        s->hasKept = has;
+        s->kept = has ? overlay : -1;
+    }
+}
+
+void OverlaySelection::setBirthday(int faceId, bool birthday) noexcept
+{
+    if (faceId == 0)
+        return;
+    if (Slot* s = findSlot(faceId))
+        s->birthday = birthday;
+}
+
+bool OverlaySelection::ownChoice(int faceId, int& overlay) const noexcept
+{
+    const Slot* s = faceId != 0 ? findSlot(faceId) : nullptr;
+    if (!s || !s->own)
+        return false;
+    overlay = s->wanted;
+    return true;
 }
 
 OverlayRule OverlaySelection::ruleFor(int faceId) const noexcept

@@ -94,6 +94,7 @@ void addAamStage(const Config& config, vision::Pipeline& pipeline, VisionStages&
                         path.c_str(), stage->fitter().vertexCount(), file.model.shapeModeCount(),
                         file.model.appearanceModeCount());
         stages.aam = stage.get();
+        stages.modelId = PersonStore::modelIdOf(path);
         pipeline.add(std::move(stage));
     } catch (const std::exception& e) {
         MIRROR_LOG_WARN("faces: model %s: %s; faces keep the 2D pose", path.c_str(), e.what());

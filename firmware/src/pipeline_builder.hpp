@@ -4,6 +4,7 @@
 // loaded, in the order they run.
 
 #include "firmware/config.hpp"
+#include "firmware/person_store.hpp"
 #include "vision/aam_stage.hpp"
 #include "vision/card_stage.hpp"
 #include "vision/face_stage.hpp"
@@ -19,6 +20,8 @@ struct VisionStages {
     vision::MotionStage* motion = nullptr;
     vision::FaceStage* faces = nullptr;
     vision::AamStage* aam = nullptr;  ///< null without `[faces] model` or when it did not load
+    /// The loaded model's identity (PersonStore::modelIdOf): a person's signature is the model's.
+    std::uint32_t modelId = 0;
 };
 
 /// Adds every configured stage for frames of `size` and `format` to `pipeline`. Throws on bad

@@ -359,7 +359,7 @@ const std::map<std::string, std::vector<std::string>> kBadFiles = {
       "rotation, mode, snapshot_dir, snapshot_every)"}},
     {"bad_unknown_section.toml",
      {"4:2: camera: unknown section (allowed: source, display, log, console, vision, faces, "
-      "overlay, days, weather, "
+      "overlay, days, people, weather, "
       "buttons, card, state)"}},
     {"bad_wrong_type.toml", {"2:9: source.width: expected integer, got string"}},
     {"bad_float_for_int.toml", {"2:9: source.width: expected integer, got float"}},
@@ -395,7 +395,7 @@ const std::map<std::string, std::vector<std::string>> kBadFiles = {
       "rotation, mode, snapshot_dir, snapshot_every)",
       "13:22: log.summary_interval_s: -1 is out of range (allowed: 0..3600)",
       "15:2: extras: unknown section (allowed: source, display, log, console, vision, faces, "
-      "overlay, days, weather, "
+      "overlay, days, people, weather, "
       "buttons, card, state)"}},
 };
 

@@ -415,3 +415,39 @@ TEST(OverlaySelectionRules, ThePrecedenceIsConfigurable)
         EXPECT_NE(problem.find(why), std::string::npos) << problem;
     }
 }
+
+TEST(OverlaySelectionRules, AKeptChoiceIsThePersonsAndTheBirthdayIsTheirsAlone)
+{
+    OverlaySelectionOptions o = options(OverlayMode::PerFace);
+    o.fadeNs = 0;
+    OverlaySelection s(catalogue(), o, 0);
+    s.setAutomatic(firmware::OverlayRule::Birthday, 3);
+    s.setAutomatic(firmware::OverlayRule::Day, 1);
+    const std::vector<vision::TrackedFace> two{face(1, 100.f), face(2, 80.f)};
+    s.update(two, ms(0));
+    EXPECT_EQ(s.choiceFor(1).overlay, 1) << "the day, the birthday is nobody's yet";
+    EXPECT_EQ(s.ruleFor(1), firmware::OverlayRule::Day);
+
+    s.setBirthday(2, true);
+    s.setKept(1, true, 2);
+    s.update(two, ms(40));
+    EXPECT_EQ(s.choiceFor(1).overlay, 2) << "face 1's person's kept choice";
+    EXPECT_EQ(s.ruleFor(1), firmware::OverlayRule::Person);
+    EXPECT_EQ(s.choiceFor(2).overlay, 3) << "face 2's birthday, on face 2 alone";
+    EXPECT_EQ(s.ruleFor(2), firmware::OverlayRule::Birthday);
+    int own = -2;
+    EXPECT_FALSE(s.ownChoice(1, own)) << "a kept choice is not one made on screen";
+
+    s.select(0);  // per_face: the target face (the largest, face 1) chooses on screen
+    s.update(two, ms(80));
+    ASSERT_TRUE(s.ownChoice(1, own));
+    EXPECT_EQ(own, 0);
+    EXPECT_EQ(s.choiceFor(1).overlay, 0) << "the choice made now beats the kept one";
+    s.setKept(2, true, -1);
+    s.update(two, ms(120));
+    EXPECT_EQ(s.choiceFor(2).overlay, -1) << "a kept none beats the birthday";
+    s.setKept(2, false, -1);
+    s.setBirthday(2, false);
+    s.update(two, ms(160));
+    EXPECT_EQ(s.ruleFor(2), firmware::OverlayRule::Day) << "taken back";
+}

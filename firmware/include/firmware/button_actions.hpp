@@ -5,8 +5,9 @@
 //
 // The map is two lists indexed by button (entry n-1 is button n, the n-th of `[buttons] lines`):
 //   short = ["next", "prev"]                # default: button 1 next overlay, button 2 previous
-//   long  = ["train-card", "toggle-debug"]  # default: long 1 trains the card, long 2 flips
-//                                           # the debug HUD (face boxes, corners, roll)
+//   long  = ["train-card", "toggle-debug", "enrol-guest"]
+//                        # default: long 1 trains the card, long 2 flips the debug HUD (face
+//                        # boxes, corners, roll), long 3 enrols the nearest face as a guest
 // A button beyond a list's end does nothing for that kind of press.
 
 #include "platform/button_input.hpp"
@@ -28,13 +29,15 @@ enum class ButtonAction : std::uint8_t {
     TrainCard,       ///< "train-card": as the console's `card train`
     ToggleDebugHud,  ///< "toggle-debug": show or hide the debug HUD (`[display] debug`)
     Snapshot,        ///< "snapshot": as the console's `snapshot`
+    EnrolGuest,      ///< "enrol-guest": the nearest face enrolled as the next "guest-N"
 };
 
 /// The config word of an action.
 const char* toString(ButtonAction action) noexcept;
 /// False for an unknown word (`out` unchanged).
 bool parseButtonAction(std::string_view word, ButtonAction& out) noexcept;
-/// Every config word, for messages: "none, next, prev, off, train-card, toggle-debug, snapshot".
+/// Every config word, for messages: "none, next, prev, off, train-card, toggle-debug, snapshot,
+/// enrol-guest".
 const char* buttonActionWords() noexcept;
 
 class ButtonActions {

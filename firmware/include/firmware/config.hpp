@@ -64,13 +64,13 @@ struct ConsoleConfig {
 struct ButtonsConfig {
     bool enabled = true;
     std::string chip = "gpiochip0";           ///< name, number, label or /dev path
-    std::vector<std::int64_t> lines{17, 27};  ///< line offsets; button n is the n-th
+    std::vector<std::int64_t> lines{17, 27, 22};  ///< line offsets; button n is the n-th
     bool activeLow = true;
     enum class Bias { AsIs, Disable, PullUp, PullDown } bias = Bias::PullUp;
     int debounceMs = 30;
     int longPressMs = 800;
     std::vector<std::string> shortPress{"next", "prev"};
-    std::vector<std::string> longPress{"train-card", "toggle-debug"};
+    std::vector<std::string> longPress{"train-card", "toggle-debug", "enrol-guest"};
 };
 
 struct OverlayConfig {
@@ -88,6 +88,12 @@ struct DaysConfig {
     /// Special days and their overlays (firmware/day_calendar.hpp), first match wins.
     std::vector<std::string> dates{"12-24..12-26 santa_hat", "12-31..01-01 party_hat"};
     std::string birthday = "birthday_hat";  ///< on a known person's birthday
+};
+
+struct PeopleConfig {
+    bool enabled = true;      ///< recognise enrolled people (needs `[faces] model`)
+    int enrolFits = 24;       ///< fits `person add` averages into a person's signature
+    int enrolTimeoutS = 15;   ///< `person add` gives up when they are not collected by then
 };
 
 struct WeatherConfig {
@@ -151,6 +157,7 @@ struct Config {
     FacesConfig faces;
     OverlayConfig overlay;
     DaysConfig days;
+    PeopleConfig people;
     WeatherConfig weather;
     ButtonsConfig buttons;
     CardConfig card;

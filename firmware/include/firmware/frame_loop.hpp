@@ -5,10 +5,9 @@
 //
 // Ownership: the loop owns the source, the display, the pipeline (built by buildPipeline; through
 // it every stage buffer), the renderer and what it does with the results (CardControl,
-// FaceControl, OverlayControl: their layers and kept state); all of them are built before the
-// first frame. step() never throws and
-// never allocates: device errors become states (source lost, display unavailable) that are logged
-// once when they begin and once when they end.
+// FaceControl, OverlayControl, PeopleControl: their layers and kept state); all of them are built
+// before the first frame. step() never throws and never allocates: device errors become states
+// (source lost, display unavailable) that are logged once when they begin and once when they end.
 
 #include "firmware/button_actions.hpp"
 #include "firmware/command_shell.hpp"
@@ -37,6 +36,7 @@ class BugReportWorker;
 class CardControl;
 class FaceControl;
 class OverlayControl;
+class PeopleControl;
 
 /// Timing of one named step of the frame: since start, and since the last summary.
 struct StepTiming {
@@ -185,6 +185,7 @@ private:
     std::unique_ptr<CardControl> card_;
     std::unique_ptr<OverlayControl> overlays_;
     std::unique_ptr<FaceControl> faces_;
+    std::unique_ptr<PeopleControl> people_;  ///< who the faces are (null without faces)
 
     // Buttons on the frame (null: none or unavailable) and what their presses do.
     std::unique_ptr<platform::ButtonInput> buttons_;

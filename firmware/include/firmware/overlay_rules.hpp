@@ -6,8 +6,11 @@
 //
 //  - person:   the face's own choice: made for it with the buttons or the console while it was
 //              on screen (per_face mode: the target face; global mode: everyone on screen then),
-//              kept for the life of its track. Choosing "none" is a choice too.
-//  - birthday: the birthday overlay on a known person's birthday (people recognition).
+//              kept for the life of its track; else, for a recognised person, the choice they
+//              made on an earlier visit (kept in their file, PersonStore). Choosing "none" is a
+//              choice too.
+//  - birthday: `[days] birthday` on a known person's birthday, on that person alone
+//              (PeopleControl).
 //  - day:      the calendar's overlay for today (`[days] dates`).
 //  - weather:  the overlay of the current forecast's weather code (`[weather]`).
 //  - global:   the overlay selected for everyone (global mode) or the one the face started with

@@ -20,6 +20,9 @@
 // own choice ("person") of the faces it acted on (per_face: the target face; global: every face on
 // screen), which by default beats the automatic ones for the life of their tracks: pressing a
 // button always changes what the person in front of the mirror wears.
+// A recognised person's face (PeopleControl) also carries what that person chose on an earlier
+// visit (setKept: offered by the person rule when the face chose nothing on screen) and whether
+// it is their birthday (setBirthday: the birthday rule offers its overlay to such faces alone).
 //
 // A face gets a state when it is first shown (TrackedFace::shown(): confirmed, or missing within
 // the tracker's grace) and loses it when the tracker drops it: with no pose left there is nothing
@@ -109,11 +112,21 @@ public:
     /// The rule that chose face `faceId`'s overlay (Global for an unknown face).
     OverlayRule ruleFor(int faceId) const noexcept;
 
-    /// What an automatic rule (Birthday, Day or Weather) offers every face without an own choice
-    /// from the next update() on: an overlay index, or -1 to offer nothing. Other rules and
-    /// indices out of range are ignored.
+    /// What an automatic rule (Birthday, Day or Weather) offers from the next update() on: an
+    /// overlay index, or -1 to offer nothing. Day and Weather offer it to every face, Birthday
+    /// only to the faces marked by setBirthday(). Other rules and indices out of range are
+    /// ignored.
     void setAutomatic(OverlayRule rule, int overlay) noexcept;
     int automatic(OverlayRule rule) const noexcept;
+
+    /// A recognised person's kept choice for face `faceId` (PeopleControl): offered by the person
+    /// rule when the face made no own choice on screen; `has` false takes it back. A face without
+    /// a state yet (first frame) is ignored: the caller says it again every frame.
+    void setKept(int faceId, bool has, int overlay) noexcept;
+    /// Whether it is face `faceId`'s person's birthday (the birthday rule offers it alone).
+    void setBirthday(int faceId, bool birthday) noexcept;
+    /// The overlay face `faceId` chose on screen (buttons, console), if it made an own choice.
+    bool ownChoice(int faceId, int& overlay) const noexcept;
 
 private:
     struct Slot {
@@ -124,6 +137,9 @@ private:
         bool fast = false;  ///< switching between two overlays: fade at twice the rate
         bool seen = false;
         bool own = false;  ///< wanted was chosen for this face (the person rule)
+        bool hasKept = false;  ///< a recognised person's kept choice (setKept)
+        int kept = -1;
+        bool birthday = false;  ///< the person's birthday today (setBirthday)
         int target = -1;   ///< what the rules decided: what the face fades to
         OverlayRule rule = OverlayRule::Global;
         float size = 0.f;
