@@ -84,6 +84,10 @@ int main(int argc, char** argv)
     app.add_option("--cascade", base.cascadePath, "OpenCV cascade for static faces and checks")
         ->capture_default_str();
     app.add_option("--background", base.background, "use this photograph as background instead");
+    app.add_option("--faces", base.faces,
+                   "the moving faces only from IMM photographs whose name starts with one of "
+                   "these (07: person 07, 07-1: their type 1 photograph)")
+        ->delimiter(',');
     app.add_option("--shake", base.shakePx,
                    "camera shake: the whole view shifted by up to this many pixels and turned "
                    "by 0.15 degrees a pixel, each frame (0: a still camera)")

@@ -3,6 +3,7 @@
 #include "compositor.hpp"
 #include "face_photo.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -54,6 +55,26 @@ std::string truthLine(const FaceState& f)
 }
 
 struct SequenceRenderer::Impl {
+    /// The photographs of `all` whose file name starts with one of `prefixes` (all when none).
+    static std::vector<std::string> chosenFaces(std::vector<std::string> all,
+                                                const std::vector<std::string>& prefixes)
+    {
+        if (prefixes.empty())
+            return all;
+        std::vector<std::string> kept;
+        for (const std::string& prefix : prefixes) {
+            const std::size_t before = kept.size();
+            for (const std::string& path : all)
+                if (fs::path(path).filename().string().rfind(prefix, 0) == 0 &&
+                    std::find(kept.begin(), kept.end(), path) == kept.end())
+                    kept.push_back(path);
+            if (kept.size() == before)
+                throw std::runtime_error("--faces " + prefix +
+                                         ": no frontal IMM photograph's name starts with it");
+        }
+        return kept;
+    }
+
     static std::string backgroundOf(const GenerateOptions& o)
     {
         const ScenarioInfo* info = findScenario(o.scenario);
@@ -68,7 +89,8 @@ struct SequenceRenderer::Impl {
           bgPath(backgroundOf(o)),
           background(loadBackground(bgPath, o.size,
                                     o.cascadePath.empty() ? kDefaultCascade : o.cascadePath)),
-          sources(frontalImmFaces((fs::path(o.dataDir) / "imm_face_db").string())),
+          sources(chosenFaces(frontalImmFaces((fs::path(o.dataDir) / "imm_face_db").string()),
+                              o.faces)),
           scenario(o.scenario, o.size, o.frames, o.seed, sources, background.faces)
     {
         for (const FacePath& p : scenario.paths())

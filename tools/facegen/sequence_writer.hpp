@@ -22,6 +22,9 @@ struct GenerateOptions {
     std::string cascadePath;                 ///< empty: Debian's haarcascade_frontalface_default
     std::string background;                  ///< overrides the scenario's photograph when set
     double shakePx = 0;  ///< camera shake amplitude (camera_shake.hpp); 0: a still camera
+    /// The moving faces only from IMM photographs whose file name starts with one of these
+    /// ("07": person 07's frontal photographs, "07-1": their type 1); empty: any person.
+    std::vector<std::string> faces;
 };
 
 struct GeneratedSequence {
