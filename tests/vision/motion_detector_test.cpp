@@ -274,6 +274,49 @@ TEST(MotionDetector, RejectsBadOptionsAndMismatchedImages)
     EXPECT_EQ(detector.apply(gray.view(), mask.view()), -1);
 }
 
+TEST(DownscaleToGray, HalvingIsTheIntegerLumaOfEachBoxExactly)
+{
+    // The factor-2 path (NEON on aarch64 for 3-byte pixels, 8 outputs at a time, the rest
+    // scalar): each output is (77 r + 150 g + 29 b + 512) >> 10 of the box's channel sums, for
+    // widths with and without a remainder.
+    for (const PixelFormat f : {PixelFormat::RGB24, PixelFormat::BGR24, PixelFormat::XRGB8888}) {
+        for (const int width : {2, 16, 17, 38, 64, 101, 720}) {
+            const int height = 6;
+            ImageBuffer src(width, height, f);
+            const int bpp = bytesPerPixel(f);
+            std::uint32_t seed = 7u + static_cast<std::uint32_t>(width);
+            for (int y = 0; y < height; ++y) {
+                for (int i = 0; i < width * bpp; ++i) {
+                    seed = seed * 1664525u + 1013904223u;
+                    // Extremes too: the largest sums must not overflow a lane.
+                    const std::uint8_t v = static_cast<std::uint8_t>(seed >> 24);
+                    src.view().row(y)[i] = y == 0 ? 255 : (y == 1 ? 0 : v);
+                }
+            }
+            ImageBuffer dst(width / 2, height / 2, PixelFormat::Gray8);
+            ASSERT_TRUE(downscaleToGray(src.view(), 2, dst.view()));
+            const RgbLayout lay = rgbLayout(f);
+            for (int y = 0; y < height / 2; ++y) {
+                for (int x = 0; x < width / 2; ++x) {
+                    unsigned sum[3] = {0, 0, 0};
+                    for (int dy = 0; dy < 2; ++dy) {
+                        for (int dx = 0; dx < 2; ++dx) {
+                            const std::uint8_t* p =
+                                src.view().row(2 * y + dy) + (2 * x + dx) * bpp;
+                            sum[0] += p[lay.r];
+                            sum[1] += p[lay.g];
+                            sum[2] += p[lay.b];
+                        }
+                    }
+                    const unsigned want = (77 * sum[0] + 150 * sum[1] + 29 * sum[2] + 512) >> 10;
+                    ASSERT_EQ(dst.view().row(y)[x], want)
+                        << pixelFormatName(f) << " width " << width << " at " << x << "," << y;
+                }
+            }
+        }
+    }
+}
+
 TEST(DownscaleToGray, BoxFilterMatchesFloatingPointReference)
 {
     const PixelFormat formats[] = {PixelFormat::RGB24, PixelFormat::BGR24, PixelFormat::XRGB8888,

@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
@@ -217,6 +218,69 @@ TEST(UprightPatch, WarpRotatedRejectsBadUnits)
     EXPECT_FALSE(warpRotated(img.view(), {5.f, 5.f}, 0.f, 1.f, -1.f, patch.view()));
     EXPECT_FALSE(warpRotated(img.view(), {5.f, 5.f}, 0.f, INFINITY, 1.f, patch.view()));
     EXPECT_EQ(patch.view().row(0)[0], 77);
+}
+
+// The clamped Q16 bilinear warp as warpRotated defines it, pixel by pixel: the reference for
+// its unclamped path (taken when the whole patch samples inside the image).
+void referenceWarp(const ConstImageView& g, Point2f centre, float rollDegrees, double unitX,
+                   double unitY, ImageView patch)
+{
+    const double rad = static_cast<double>(rollDegrees) * kPi / 180.0;
+    const double c = std::cos(rad);
+    const double s = std::sin(rad);
+    const double u0 = (0.5 - 0.5 * patch.width) * unitX;
+    const double v0 = (0.5 - 0.5 * patch.height) * unitY;
+    const double x0 = centre.x + c * u0 - s * v0 - 0.5;
+    const double y0 = centre.y + s * u0 + c * v0 - 0.5;
+    const auto q = [](double v) { return static_cast<std::int32_t>(std::lrint(v * 65536.0)); };
+    for (int v = 0; v < patch.height; ++v) {
+        std::int32_t sx = q(x0 - s * unitY * v);
+        std::int32_t sy = q(y0 + c * unitY * v);
+        for (int u = 0; u < patch.width; ++u, sx += q(c * unitX), sy += q(s * unitX)) {
+            const auto fx = static_cast<std::uint32_t>((sx >> 8) & 255);
+            const auto fy = static_cast<std::uint32_t>((sy >> 8) & 255);
+            const auto at = [&](int x, int y) -> std::uint32_t {
+                return g.row(std::clamp(y, 0, g.height - 1))[std::clamp(x, 0, g.width - 1)];
+            };
+            const int ix = sx >> 16;
+            const int iy = sy >> 16;
+            const std::uint32_t top = at(ix, iy) * (256 - fx) + at(ix + 1, iy) * fx;
+            const std::uint32_t bottom = at(ix, iy + 1) * (256 - fx) + at(ix + 1, iy + 1) * fx;
+            patch.row(v)[u] =
+                static_cast<std::uint8_t>((top * (256 - fy) + bottom * fy + 32768) >> 16);
+        }
+    }
+}
+
+TEST(UprightPatch, WarpRotatedInsideAndAtTheBorderIsTheClampedBilinearWarp)
+{
+    // Patches well inside (the unclamped path), touching the last row or column, and reaching
+    // beyond the image, at many angles and units: every pixel as the clamped reference.
+    const ImageBuffer img = noiseImage(97, 71, 5);
+    std::mt19937 rng(17);
+    std::uniform_real_distribution<float> cx(-10.f, 107.f), cy(-10.f, 81.f), roll(-40.f, 40.f),
+        unit(0.3f, 2.5f);
+    ImageBuffer got(37, 29, PixelFormat::Gray8);
+    ImageBuffer want(37, 29, PixelFormat::Gray8);
+    int inside = 0;
+    for (int i = 0; i < 3000; ++i) {
+        // Every other patch small and about the middle: mostly inside.
+        const bool middle = i % 2 == 0;
+        const Point2f c = middle ? Point2f{48.f + 0.2f * cx(rng), 35.f + 0.2f * cy(rng)}
+                                 : Point2f{cx(rng), cy(rng)};
+        const float r = i % 7 == 0 ? 0.f : roll(rng);
+        const double ux = middle ? 0.4 * unit(rng) : unit(rng);
+        const double uy = i % 3 == 0 ? ux : middle ? 0.4 * unit(rng) : unit(rng);
+        ASSERT_TRUE(warpRotated(img.view(), c, r, ux, uy, got.view()));
+        referenceWarp(img.view(), c, r, ux, uy, want.view());
+        for (int v = 0; v < got.view().height; ++v)
+            for (int u = 0; u < got.view().width; ++u)
+                ASSERT_EQ(got.view().row(v)[u], want.view().row(v)[u])
+                    << "at " << u << "," << v << " centre " << c.x << "," << c.y << " roll " << r;
+        const double reach = 0.75 * (37 * ux + 29 * uy);
+        inside += c.x - reach > 1 && c.y - reach > 1 && c.x + reach < 96 && c.y + reach < 70;
+    }
+    EXPECT_GT(inside, 300);  // the unclamped path was taken
 }
 
 TEST(UprightPatch, NoHeapAllocation)

@@ -207,7 +207,8 @@ struct FaceDetector::Impl {
                 tables.prepareRows(c.y, c.y + cascade.windowHeight());
                 // Step 4: the cascade's first stages for the whole row at once.
                 const int done = cascade.rowForm() && wanted >= RowPrefilter::kMinWindows
-                                     ? prefilter.run(cascade, tables, c.y, c.step, j0, j1)
+                                     ? prefilter.run(cascade, tables, c.y, c.step, j0, j1,
+                                                     rowWanted.data())
                                      : 0;
                 // Step 5: each window through the rest of the cascade; those passing are hits (in
                 // first-hit mode, §3's verification, the first one ends the scan).

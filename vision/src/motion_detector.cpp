@@ -10,6 +10,10 @@
 #include <string>
 #include <utility>
 
+#if defined(__aarch64__)
+#include <arm_neon.h>
+#endif
+
 namespace vision {
 
 namespace {
@@ -324,6 +328,36 @@ namespace {
 
 // 2x2 box of a packed RGB-like image into grey: sum the four pixels per channel, then luma with
 // the divide by 4 folded into the shift.
+#if defined(__aarch64__)
+/// halveRgb's sums for 8 output pixels of a 3-byte format with NEON (the camera's BGR24 at
+/// half size: a sixth of the motion stage): vld3 de-interleaves 16 pixels of each row, pairwise
+/// long adds sum each 2x2 box per channel (at most 1020), the luma in 32-bit lanes. The same
+/// integers as the scalar loop, so the same bytes.
+template <int R, int G, int B>
+int halveRgb3Neon(const std::uint8_t* a, const std::uint8_t* b, std::uint8_t* out,
+                  int width) noexcept
+{
+    int x = 0;
+    for (; x + 8 <= width; x += 8, a += 48, b += 48) {
+        const uint8x16x3_t pa = vld3q_u8(a);
+        const uint8x16x3_t pb = vld3q_u8(b);
+        const uint16x8_t r = vpadalq_u8(vpaddlq_u8(pa.val[R]), pb.val[R]);
+        const uint16x8_t g = vpadalq_u8(vpaddlq_u8(pa.val[G]), pb.val[G]);
+        const uint16x8_t bl = vpadalq_u8(vpaddlq_u8(pa.val[B]), pb.val[B]);
+        const uint32x4_t half = vdupq_n_u32(512);
+        uint32x4_t lo = vmlal_n_u16(half, vget_low_u16(r), 77);
+        uint32x4_t hi = vmlal_high_n_u16(half, r, 77);
+        lo = vmlal_n_u16(lo, vget_low_u16(g), 150);
+        hi = vmlal_high_n_u16(hi, g, 150);
+        lo = vmlal_n_u16(lo, vget_low_u16(bl), 29);
+        hi = vmlal_high_n_u16(hi, bl, 29);
+        const uint16x8_t luma = vcombine_u16(vshrn_n_u32(lo, 10), vshrn_n_u32(hi, 10));
+        vst1_u8(out + x, vmovn_u16(luma));
+    }
+    return x;
+}
+#endif
+
 template <int Bpp, int R, int G, int B>
 void halveRgb(const ConstImageView& src, const ImageView& dst) noexcept
 {
@@ -331,7 +365,15 @@ void halveRgb(const ConstImageView& src, const ImageView& dst) noexcept
         const std::uint8_t* a = src.row(2 * y);
         const std::uint8_t* b = src.row(2 * y + 1);
         std::uint8_t* out = dst.row(y);
-        for (int x = 0; x < dst.width; ++x, a += 2 * Bpp, b += 2 * Bpp) {
+        int x = 0;
+#if defined(__aarch64__)
+        if constexpr (Bpp == 3) {
+            x = halveRgb3Neon<R, G, B>(a, b, out, dst.width);
+            a += 2 * Bpp * x;
+            b += 2 * Bpp * x;
+        }
+#endif
+        for (; x < dst.width; ++x, a += 2 * Bpp, b += 2 * Bpp) {
             const unsigned r = a[R] + a[Bpp + R] + b[R] + b[Bpp + R];
             const unsigned g = a[G] + a[Bpp + G] + b[G] + b[Bpp + G];
             const unsigned bl = a[B] + a[Bpp + B] + b[B] + b[Bpp + B];

@@ -205,11 +205,27 @@ RowPrefilter::RowPrefilter(int maxWindows)
 // Survivors cluster (faces, texture): each stage runs over the span from the first to the last
 // window still alive, while at least 1 / kAliveDivisor of the span is alive.
 int RowPrefilter::run(const FixedCascade& cascade, const ScaledIntegrals& tables, int y, int step,
-                      int j0, int j1) noexcept
+                      int j0, int j1, const std::uint8_t* wanted) noexcept
 {
+    // A masked scan wants a few windows of a row: the span is cut to them, and the others in it
+    // are dead from the start (no norm, not counted alive), so the stages run over the wanted
+    // windows' span only. Each window's decision is its own, so the wanted ones' results are
+    // those of the whole row's run.
+    if (wanted != nullptr) {
+        while (j0 < j1 && wanted[j0] == 0)
+            ++j0;
+        while (j1 > j0 && wanted[j1 - 1] == 0)
+            --j1;
+    }
     const std::ptrdiff_t row = static_cast<std::ptrdiff_t>(y) * tables.stride();
     int alive = 0;
     for (int j = j0; j < j1; ++j) {
+        if (wanted != nullptr && wanted[j] == 0) {
+            norm_[static_cast<std::size_t>(j)] = 0.0f;
+            result_[static_cast<std::size_t>(j)] = -1;
+            from_[static_cast<std::size_t>(j)] = 0;
+            continue;
+        }
         const std::ptrdiff_t at = row + static_cast<std::ptrdiff_t>(j) * step;
         const float vnf = cascade.windowNorm(tables.sum() + at, tables.squaredSum() + at);
         norm_[static_cast<std::size_t>(j)] = vnf;

@@ -72,6 +72,7 @@ ScaledIntegrals::ScaledIntegrals(Size maxFrameSize, bool splitTable)
         v->assign(maxW, 0);
     for (auto* v : {&yw0_, &yw1_})
         v->assign(maxH, 0);
+    horizontal_.assign(2 * maxW, 0);
 }
 
 void ScaledIntegrals::prepare(const ConstImageView& gray, int dw, int dh, bool split) noexcept
@@ -90,6 +91,7 @@ void ScaledIntegrals::begin(const ConstImageView& gray, int dw, int dh, bool spl
     ready_ = -1;
     resizeTable(gray.width, dw, {xofs0_.data(), xofs1_.data(), xw0_.data(), xw1_.data()});
     resizeTable(gray.height, dh, {yofs0_.data(), yofs1_.data(), yw0_.data(), yw1_.data()});
+    horizontalRow_[0] = horizontalRow_[1] = -1;
 }
 
 void ScaledIntegrals::prepareRows(int top, int bottom) noexcept
@@ -133,19 +135,38 @@ void ScaledIntegrals::shrinkRow(int y) noexcept
         std::memcpy(out, gray_.row(y), static_cast<std::size_t>(dw));
         return;
     }
-    const std::uint8_t* r0 = gray_.row(yofs0_[static_cast<std::size_t>(y)]);
-    const std::uint8_t* r1 = gray_.row(yofs1_[static_cast<std::size_t>(y)]);
+    // The horizontal pass of each source row once per scale (consecutive shrunk rows share a
+    // source row while the scale is below 2), then the vertical pass over whole rows.
+    const std::uint16_t* __restrict h0 = horizontalPass(yofs0_[static_cast<std::size_t>(y)]);
+    const std::uint16_t* __restrict h1 = horizontalPass(yofs1_[static_cast<std::size_t>(y)]);
     const std::uint32_t a = static_cast<std::uint32_t>(yw0_[static_cast<std::size_t>(y)]);
     const std::uint32_t b = static_cast<std::uint32_t>(yw1_[static_cast<std::size_t>(y)]);
-    for (int x = 0; x < dw; ++x) {
-        const int o0 = xofs0_[static_cast<std::size_t>(x)];
-        const int o1 = xofs1_[static_cast<std::size_t>(x)];
+    for (int x = 0; x < dw; ++x)
+        out[x] = static_cast<std::uint8_t>((h0[x] * a + h1[x] * b + (1u << 15)) >> 16);
+}
+
+const std::uint16_t* ScaledIntegrals::horizontalPass(int sourceRow) noexcept
+{
+    // Two slots, the least recently used one refilled: shrinkRow's second row never evicts its
+    // first. The values are the resize's horizontal sums, at most 255 x 256: 16 bits.
+    for (int k = 0; k < 2; ++k) {
+        if (horizontalRow_[k] == sourceRow) {
+            horizontalOld_ = 1 - k;
+            return horizontal_.data() + static_cast<std::ptrdiff_t>(k) * scaledStride_;
+        }
+    }
+    const int k = horizontalOld_;
+    horizontalOld_ = 1 - k;
+    horizontalRow_[k] = sourceRow;
+    std::uint16_t* h = horizontal_.data() + static_cast<std::ptrdiff_t>(k) * scaledStride_;
+    const std::uint8_t* r = gray_.row(sourceRow);
+    for (int x = 0; x < dw_; ++x) {
         const auto c0 = static_cast<std::uint32_t>(xw0_[static_cast<std::size_t>(x)]);
         const auto c1 = static_cast<std::uint32_t>(xw1_[static_cast<std::size_t>(x)]);
-        const std::uint32_t h0 = r0[o0] * c0 + r0[o1] * c1;
-        const std::uint32_t h1 = r1[o0] * c0 + r1[o1] * c1;
-        out[x] = static_cast<std::uint8_t>((h0 * a + h1 * b + (1u << 15)) >> 16);
+        h[x] = static_cast<std::uint16_t>(r[xofs0_[static_cast<std::size_t>(x)]] * c0 +
+                                          r[xofs1_[static_cast<std::size_t>(x)]] * c1);
     }
+    return h;
 }
 
 void ScaledIntegrals::integrateRow(int y) noexcept

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 
 // Beyond fig. 89 (METHOD.md §3, "Detection"; dissertation 5.1.3): the upright cascade finds faces
 // within about +-15 degrees of upright, and a tracked face keeps its roll by its corners, but a
@@ -99,6 +100,7 @@ long TiltedScan::run(const Frame& frame, long budget) noexcept
     // One angle after the other while the budget lasts (both in a frame when it allows; a cold
     // start's whole-image scans also at +-kColdMidDegrees).
     long total = 0;
+    whole_ = frame.coldStart;
     const int scans = frame.coldStart && options_.tiltScanDegrees > kColdMidDegrees + 5.f ? 4 : 2;
     for (int k = 0; k < scans && budget > 0; ++k) {
         const bool unlimited = budget == kUnlimited;
@@ -181,8 +183,11 @@ long TiltedScan::step(const Frame& frame, long budget) noexcept
     region.width = size_.width;
     region.height = size_.height;
     warpRotated(frame.gray, centre_, angle_, 1.f, 1.f, region);
-    warpRotated(frame.scanMask, centre_, angle_, static_cast<float>(size_.width) / kMaskSide,
-                static_cast<float>(size_.height) / kMaskSide, mask_.view());
+    if (whole_)
+        markImageInRegion();
+    else
+        warpRotated(frame.scanMask, centre_, angle_, static_cast<float>(size_.width) / kMaskSide,
+                    static_cast<float>(size_.height) / kMaskSide, mask_.view());
     maskIntegral_.compute(mask_.view());
     const int excludedCount = excludeTracks(frame.tracks);
     const bool completed = detector_->detectMaskedIncremental(
@@ -197,6 +202,33 @@ long TiltedScan::step(const Frame& frame, long budget) noexcept
     done_ = true;
     collectHits();
     return used;
+}
+
+void TiltedScan::markImageInRegion() noexcept
+{
+    // A cold start's mask: the part of the turned region that shows the image. The region is
+    // larger than the turned image (its corners, and a margin) and shows the image's border
+    // pixels repeated there; a window mostly there holds no face in view (collectHits keeps
+    // only faces nearly wholly in view). (The cold frame's scan mask is all set, and turned it
+    // would mark the whole region.)
+    const Turn r = turn();
+    const Size s = options_.imageSize;
+    const float su = static_cast<float>(size_.width) / kMaskSide;
+    const float sv = static_cast<float>(size_.height) / kMaskSide;
+    ImageView m = mask_.view();
+    for (int j = 0; j < kMaskSide; ++j) {
+        const float v = (static_cast<float>(j) + 0.5f) * sv - r.hh;
+        std::uint8_t* row = m.row(j);
+        for (int i = 0; i < kMaskSide; ++i) {
+            const float u = (static_cast<float>(i) + 0.5f) * su - r.hw;
+            const float x = centre_.x + r.c * u - r.n * v;
+            const float y = centre_.y + r.n * u + r.c * v;
+            row[i] = x >= 0.f && y >= 0.f && x < static_cast<float>(s.width) &&
+                             y < static_cast<float>(s.height)
+                         ? 255
+                         : 0;
+        }
+    }
 }
 
 TiltedScan::Turn TiltedScan::turn() const noexcept

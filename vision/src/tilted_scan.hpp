@@ -63,6 +63,7 @@ private:
     };
     Turn turn() const noexcept;
     bool chooseRegion(const Frame& frame) noexcept;
+    void markImageInRegion() noexcept;
     long step(const Frame& frame, long budget) noexcept;
     int excludeTracks(std::span<const Track> tracks) noexcept;
     void collectHits() noexcept;
@@ -82,7 +83,8 @@ private:
     std::vector<Rect> hits_;       ///< the last completed tilted scan's faces (image boxes)
     std::vector<float> hitRolls_;  ///< the angle of the scan that found each
     int count_ = 0;
-    bool done_ = false;  ///< a tilted scan completed this frame
+    bool done_ = false;   ///< a tilted scan completed this frame
+    bool whole_ = false;  ///< this run() is a cold start's: the whole image, its part of it
 };
 
 }  // namespace vision

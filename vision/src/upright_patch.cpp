@@ -63,11 +63,32 @@ bool warpRotated(const ConstImageView& gray, Point2f centre, float rollDegrees, 
     const std::int32_t stepYu = q(dyu);
     const int maxX = gray.width - 1;
     const int maxY = gray.height - 1;
+    // A row whose samples and their right and lower neighbours are all inside the image needs
+    // no clamping (a face in view: the roll search warps it some thirty times). A row's
+    // positions are linear in u, so its two ends bound them.
+    const auto within = [](std::int64_t p, int max) {
+        return (p >> kPosShift) >= 0 && (p >> kPosShift) < max;
+    };
+    const std::int64_t lastU = patch.width - 1;
     for (int v = 0; v < patch.height; ++v) {
         // Row starts from the exact start, so rounding does not accumulate down the patch.
         std::int32_t sx = q(x0 + dxv * v);
         std::int32_t sy = q(y0 + dyv * v);
         std::uint8_t* out = patch.row(v);
+        if (within(sx, maxX) && within(sy, maxY) && within(sx + lastU * stepXu, maxX) &&
+            within(sy + lastU * stepYu, maxY)) {
+            // The same sums as below, without the clamps.
+            for (int u = 0; u < patch.width; ++u, sx += stepXu, sy += stepYu) {
+                const auto fx = static_cast<std::uint32_t>((sx >> (kPosShift - 8)) & 255);
+                const auto fy = static_cast<std::uint32_t>((sy >> (kPosShift - 8)) & 255);
+                const std::uint8_t* ra = gray.row(sy >> kPosShift) + (sx >> kPosShift);
+                const std::uint8_t* rb = ra + gray.stride;
+                const std::uint32_t top = ra[0] * (256 - fx) + ra[1] * fx;
+                const std::uint32_t bottom = rb[0] * (256 - fx) + rb[1] * fx;
+                out[u] = static_cast<std::uint8_t>((top * (256 - fy) + bottom * fy + 32768) >> 16);
+            }
+            continue;
+        }
         for (int u = 0; u < patch.width; ++u, sx += stepXu, sy += stepYu) {
             const int ix = sx >> kPosShift;  // floor (arithmetic shift)
             const int iy = sy >> kPosShift;
