@@ -158,6 +158,18 @@ TEST(FaceFailureModes, AFaceComingInTiltedAtTheTopIsShownAsItComesIntoView)
     EXPECT_LE(s.missed, 1);
 }
 
+// A face coming in at the left edge was wholly in view at frame 87 and shown only at 91: the
+// budgeted scan goes over the whole search mask in order and reached the edge where it came in
+// two frames later, and a detection needs two frames to be shown. The moving part of each edge's
+// band is now scanned first in each frame's budget (EntryScan): found at 86, partly in view,
+// and shown at 87, as it came wholly into view.
+TEST(FaceFailureModes, AFaceComingInAtTheEdgeIsShownAsItComesWhollyIntoView)
+{
+    const Score s = run("enter-leave", 13, 0, 95, 0.0, 80);
+    EXPECT_EQ(s.falsePositives, 0) << "frames" << s.log;
+    EXPECT_LE(s.missed, 1);
+}
+
 // A face found at a cold start turning in place (rolling a degree a frame, its centre still) was
 // shown only after its roll had turned 4 degrees, at frame 6. The image's symmetry is now asked
 // after every 2 degrees of tracked turn (StaticFaceRule), and it was shown at frame 3.
