@@ -114,7 +114,10 @@ long EntryScan::run(const Frame& frame, long budget) noexcept
 bool EntryScan::chooseRegion(const Frame& frame, int edge) noexcept
 {
     // The bounding box of the moving cells in the edge's band whose centre lies outside every
-    // tracked face's reach: where an untracked face may be coming in.
+    // tracked face's reach: where an untracked face may be coming in, when one of them is on the
+    // edge itself (a face near the edge that is not coming in is the whole mask's scan's: its
+    // band, cut through the face, took half the budget for nothing while two faces crossed near
+    // the left edge, facegen seed 13's `two`).
     const Size s = options_.imageSize;
     const int depth = static_cast<int>(kBandDepth * static_cast<float>(std::min(s.width, s.height)));
     const int bx0 = edge == 1 ? s.width - depth : 0;
@@ -122,6 +125,7 @@ bool EntryScan::chooseRegion(const Frame& frame, int edge) noexcept
     const int by0 = edge == 3 ? s.height - depth : 0;
     const int by1 = edge == 2 ? depth : s.height;
     int x0 = s.width, y0 = s.height, x1 = 0, y1 = 0;
+    bool onEdge = false;
     for (int cy = by0; cy < by1; cy += kCell) {
         const int cy1 = std::min(cy + kCell, by1);
         for (int cx = bx0; cx < bx1; cx += kCell) {
@@ -144,10 +148,12 @@ bool EntryScan::chooseRegion(const Frame& frame, int edge) noexcept
             y0 = std::min(y0, cy);
             x1 = std::max(x1, cx1);
             y1 = std::max(y1, cy1);
+            onEdge = onEdge || (edge == 0 && cx == 0) || (edge == 1 && cx1 == s.width) ||
+                     (edge == 2 && cy == 0) || (edge == 3 && cy1 == s.height);
         }
     }
     const Size w = detector_->windowSize();
-    if (x1 - x0 < w.width / 2 || y1 - y0 < w.height / 2)
+    if (!onEdge || x1 - x0 < w.width / 2 || y1 - y0 < w.height / 2)
         return false;  // nothing moving untracked of a face's size
     // Margin: the detector's box reaches beyond the moving pixels of the face.
     const int margin = 4 + static_cast<int>(0.15f * static_cast<float>(std::max(x1 - x0, y1 - y0)));
