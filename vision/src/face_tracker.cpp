@@ -36,6 +36,10 @@ namespace {
 
 /// A detection re-anchors the track it matches only when they share this much (IoU).
 constexpr float kReanchorIou = 0.5f;
+/// A turned scan's hit whose centre is within this fraction of a tracked face's size of that
+/// face's centre (both ways) is of part of that head: the reach of its motion, which the turned
+/// scans look into (TiltedScan's and EntryScan's regions stop at it, their windows do not).
+constexpr float kTiltedHitReach = 0.75f;
 
 Point2f centreOf(Rect box) noexcept
 {
@@ -302,7 +306,21 @@ void FaceTracker::Impl::match(Rect box, float rollHint) noexcept
                          c.x < static_cast<float>(box.x + box.width) &&
                          c.y < static_cast<float>(box.y + box.height);
         }
-        if (!holdsTrack)
+        // A turned scan's hit beside a tracked head is a turned window over part of it and what
+        // is beside it (facegen seed 13's `two`: a -25 degree hit on the lower part of a head
+        // and below it, 0.7 of its size from its centre, moved with the head and was shown for
+        // 24 frames). An upright hit there is still taken: faces that cross come so close. Only
+        // shown faces count: a track not yet shown may be a chance hit itself (facegen seed 42's
+        // `four`: a 224 px tilted hit at a cold start, gone the next frame, kept a face beside it
+        // from being started for two frames).
+        bool besideTrack = false;
+        for (int i = 0; i < trackCount && rollHint != 0.f && !besideTrack; ++i) {
+            const TrackedFace& f = tracks[static_cast<std::size_t>(i)].face;
+            const Point2f c = centreOf(box);
+            besideTrack = f.shown() && std::fabs(c.x - f.centre.x) < kTiltedHitReach * f.size &&
+                          std::fabs(c.y - f.centre.y) < kTiltedHitReach * f.size;
+        }
+        if (!holdsTrack && !besideTrack)
             startTrack(box, rollHint);
         return;
     }
