@@ -4,9 +4,9 @@
 // enters through an edge; the budgeted scan of the whole search mask reaches it only when its
 // turn comes (about two frames with the shipped budget, more for the tilted scans), so it was in
 // view unshown for frames. The band along each edge (left, right, top, bottom) with moving
-// untracked cells is scanned on its own before the rest of the mask, upright and turned by
-// +-tiltScanDegrees (as TiltedScan turns the moving regions: a face may come in tilted); its
-// windows come out of the same budget. Private to vision/src.
+// untracked cells, one of them on the edge itself, is scanned on its own before the rest of the
+// mask, upright and turned by +-tiltScanDegrees (as TiltedScan turns the moving regions: a face
+// may come in tilted); its windows come out of the same budget. Private to vision/src.
 //
 // Use: construct with the tracker's options (off without a window budget, where every frame's
 // scan is whole anyway); each frame call run() before the upright scan with the share of the
