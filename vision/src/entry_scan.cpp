@@ -119,7 +119,8 @@ bool EntryScan::chooseRegion(const Frame& frame, int edge) noexcept
     // band, cut through the face, took half the budget for nothing while two faces crossed near
     // the left edge, facegen seed 13's `two`).
     const Size s = options_.imageSize;
-    const int depth = static_cast<int>(kBandDepth * static_cast<float>(std::min(s.width, s.height)));
+    const int depth =
+        static_cast<int>(kBandDepth * static_cast<float>(std::min(s.width, s.height)));
     const int bx0 = edge == 1 ? s.width - depth : 0;
     const int bx1 = edge == 0 ? depth : s.width;
     const int by0 = edge == 3 ? s.height - depth : 0;

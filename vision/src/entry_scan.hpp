@@ -67,7 +67,7 @@ private:
 
     FaceTrackerOptions options_;
     std::unique_ptr<FaceDetector> detector_;  ///< null when off
-    ImageBuffer gray_;  ///< a turned look's region (top-left part)
+    ImageBuffer gray_;                        ///< a turned look's region (top-left part)
     ImageBuffer mask_;  ///< the region's motion mask, resampled to kMaskSide squared
     IntegralImage maskIntegral_;
     bool active_ = false;  ///< a look's scan is in progress over region_

@@ -127,8 +127,8 @@ bool LivenessCue::swayed(const SwayHistory& history) noexcept
         // camera, a face coming in untracked at the edge biased it by 0.02-0.1 px a frame for a
         // few frames, and a print's corrected corners swayed together by as much (facegen seeds
         // 21 and 57's `enter-leave`: a print shown for the rest of the sequence).
-        const float least = kMinSway + kSwayPerStep * static_cast<float>(k + 1) +
-                            std::sqrt(dot(view, view));
+        const float least =
+            kMinSway + kSwayPerStep * static_cast<float>(k + 1) + std::sqrt(dot(view, view));
         if (sway2 < least * least || sway2 < kMinSwayOverNoise * kMinSwayOverNoise * variance)
             continue;
         bool shared = true;
