@@ -189,6 +189,19 @@ TEST(TrackedFaceFitter, ASignatureSettlesAfterItsFitsAndEnrolmentCanAskForMore)
     for (int i = 0; i < settled.appearanceCount; ++i)
         magnitude += std::abs(settled.appearance[static_cast<std::size_t>(i)]);
     EXPECT_GT(magnitude, 0.f);
+    ASSERT_EQ(settled.textureCount, fitter.options().fit.textureGrid *
+                                        fitter.options().fit.textureGrid * vision::kAamLbpBins)
+        << "the texture descriptor is in the signature";
+    // Each cell's values (255 * sqrt of its patterns' shares) are about a unit vector.
+    for (int cell = 0; cell * vision::kAamLbpBins < settled.textureCount; ++cell) {
+        float squares = 0.f;
+        for (int b = 0; b < vision::kAamLbpBins; ++b) {
+            const float v =
+                settled.texture[static_cast<std::size_t>(cell * vision::kAamLbpBins + b)];
+            squares += v * v / (255.f * 255.f);
+        }
+        EXPECT_NEAR(squares, 1.f, 0.1f) << "cell " << cell;
+    }
     fitter.process(face.image.view(), {&tracked, 1});
     EXPECT_EQ(fitter.fits()[0].signature.samples, 3) << "a settled signature no longer changes";
 

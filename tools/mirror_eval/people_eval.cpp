@@ -143,6 +143,10 @@ vision::FaceSignature merged(const vision::FaceSignature& a, const vision::FaceS
         m.shapeUnits[i] = wa * a.shapeUnits[i] + (1.f - wa) * b.shapeUnits[i];
     for (std::size_t i = 0; i < m.appearance.size(); ++i)
         m.appearance[i] = wa * a.appearance[i] + (1.f - wa) * b.appearance[i];
+    if (a.textureCount == b.textureCount)
+        for (std::size_t i = 0; i < m.texture.size(); ++i)
+            m.texture[i] = static_cast<std::uint8_t>(
+                std::lround(wa * a.texture[i] + (1.f - wa) * b.texture[i]));
     m.samples = a.samples + b.samples;
     return m;
 }
@@ -187,6 +191,9 @@ void dumpSignature(std::ostream& csv, const std::string& who, int person, int ty
     csv << ',' << s.appearanceCount;
     for (int i = 0; i < s.appearanceCount; ++i)
         csv << ',' << s.appearance[static_cast<std::size_t>(i)];
+    csv << ',' << s.textureCount;
+    for (int i = 0; i < s.textureCount; ++i)
+        csv << ',' << static_cast<int>(s.texture[static_cast<std::size_t>(i)]);
     csv << '\n';
 }
 
@@ -621,6 +628,8 @@ int run(const PeopleEvalOptions& o, std::FILE* out)
     if (!file.ok)
         throw std::runtime_error(file.problem);
     vision::TrackedFaceFitterOptions fitterOptions;
+    if (o.textureGrid >= 0)
+        fitterOptions.fit.textureGrid = o.textureGrid;
     if (o.nearest)
         fitterOptions.fit.appearanceSampling = vision::AamSampling::Nearest;
     vision::TrackedFaceFitter fitter(file.model, fitterOptions);
@@ -632,6 +641,10 @@ int run(const PeopleEvalOptions& o, std::FILE* out)
         galleryOptions.shapeWeight = o.shapeWeight;
     if (o.appearanceWeight >= 0.f)
         galleryOptions.appearanceWeight = o.appearanceWeight;
+    if (o.textureWeight >= 0.f)
+        galleryOptions.textureWeight = o.textureWeight;
+    if (o.textureSpread > 0.f)
+        galleryOptions.textureSpread = o.textureSpread;
     std::ofstream csvFile;
     std::ostream* csv = nullptr;
     if (!o.dump.empty()) {
@@ -643,10 +656,13 @@ int run(const PeopleEvalOptions& o, std::FILE* out)
     std::fprintf(out,
                  "model %s; boxes: Viola-Jones (%s) on the image shrunk by 2; signature: %d ok "
                  "fits after the shape units froze (at most %d fits of a still image); gallery: "
-                 "shape weight %.2f, appearance weight %.2f, acceptScore %.3f\n",
+                 "shape weight %.2f, appearance weight %.2f, texture weight %.2f (spread %.1f), "
+                 "acceptScore %.3f\n",
                  o.model.c_str(), o.cascade.c_str(), fitter.options().signatureFits, o.maxFits,
                  static_cast<double>(galleryOptions.shapeWeight),
                  static_cast<double>(galleryOptions.appearanceWeight),
+                 static_cast<double>(galleryOptions.textureWeight),
+                 static_cast<double>(galleryOptions.textureSpread),
                  static_cast<double>(galleryOptions.acceptScore));
     ImmResult immResult;
     vision::PersonGallery fgnetGallery(galleryOptions);

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <iterator>
 
 namespace vision {
@@ -46,6 +47,20 @@ float scoreOf(const FaceSignature& a, const FaceSignature& b,
         }
         d2 += o.appearanceWeight * sum / static_cast<float>(n);
         weights += o.appearanceWeight;
+    }
+    const int t = std::min(a.textureCount, b.textureCount);
+    if (o.textureWeight > 0.f && t > 0 && a.textureCount == b.textureCount) {
+        // Integer: every difference at most 255, so the sum stays far inside 32 bits.
+        std::int32_t sum = 0;
+        for (int i = 0; i < t; ++i) {
+            const std::int32_t d =
+                static_cast<std::int32_t>(a.texture[static_cast<std::size_t>(i)]) -
+                static_cast<std::int32_t>(b.texture[static_cast<std::size_t>(i)]);
+            sum += d * d;
+        }
+        const float spread = std::max(o.textureSpread, 1e-3f);
+        d2 += o.textureWeight * static_cast<float>(sum) / static_cast<float>(t) / (spread * spread);
+        weights += o.textureWeight;
     }
     if (weights <= 0.f || !std::isfinite(d2))
         return 0.f;

@@ -172,7 +172,23 @@ void TrackedFaceFitter::updateSignature(ConstImageView grey, Slot& slot, FaceFit
         for (int i = 0; i < kAamShapeUnits; ++i)
             sig.shapeUnits[i] += w * (slot.state.head.sigma[i] - sig.shapeUnits[i]);
         std::array<float, kFaceSignatureMaxAppearance> appearance{};
-        const int count = fitter_.appearanceParameters(grey, slot.state, appearance);
+        std::array<std::uint8_t, kFaceSignatureMaxTexture> texture{};
+        const int count = fitter_.appearanceParameters(grey, slot.state, appearance, texture);
+        const int textureCount = std::min(fitter_.textureSize(), kFaceSignatureMaxTexture);
+        if (sig.samples == 0 || textureCount != sig.textureCount) {
+            sig.textureCount = textureCount;
+            std::copy_n(texture.begin(), textureCount, sig.texture.begin());
+        } else {
+            // The running mean in whole units (each step rounded to the nearest).
+            for (int i = 0; i < textureCount; ++i) {
+                auto& v = sig.texture[static_cast<std::size_t>(i)];
+                v = static_cast<std::uint8_t>(std::clamp(
+                    static_cast<int>(std::lround(
+                        static_cast<float>(v) +
+                        w * static_cast<float>(texture[static_cast<std::size_t>(i)] - v))),
+                    0, 255));
+            }
+        }
         if (sig.samples == 0 || count != sig.appearanceCount) {
             // The first sample (or, never with one model, a count that changed): start afresh.
             sig.appearanceCount = count;

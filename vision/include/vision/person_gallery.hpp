@@ -24,6 +24,11 @@ struct PersonGalleryOptions {
     /// shape units help a little at a tenth of the appearance's weight (person_gallery.cpp).
     float shapeWeight = 0.1f;
     float appearanceWeight = 1.f;
+    /// The texture descriptor's weight (0: off) and its within-person spread: the rms, over the
+    /// descriptor's values, of their deviation from the person's mean (in the descriptor's units,
+    /// 255 = a whole cell's share; person_gallery.cpp).
+    float textureWeight = 0.f;
+    float textureSpread = 1.f;
     std::array<float, kFaceSignatureMaxAppearance> appearanceSpread = defaultAppearanceSpread();
     std::array<float, kAamShapeUnits> shapeSpread = defaultShapeSpread();
 };
