@@ -243,6 +243,8 @@ int main(int argc, char** argv)
     peopleCmd->add_option("--dump", people.dump, "write every signature to this CSV");
     peopleCmd->add_option("--texture-weight", people.textureWeight, "the gallery's textureWeight");
     peopleCmd->add_option("--texture-spread", people.textureSpread, "the gallery's textureSpread");
+    peopleCmd->add_option("--signature-residual", people.signatureResidual,
+                          "fits rejected only by a residual up to this still make signatures");
     peopleCmd->add_option("--texture-grid", people.textureGrid,
                           "the texture descriptor's cells per side (0: none)");
     peopleCmd->add_flag("--nearest", people.nearest,

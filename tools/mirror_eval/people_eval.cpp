@@ -628,6 +628,8 @@ int run(const PeopleEvalOptions& o, std::FILE* out)
     if (!file.ok)
         throw std::runtime_error(file.problem);
     vision::TrackedFaceFitterOptions fitterOptions;
+    if (o.signatureResidual >= 0.f)
+        fitterOptions.signatureMaxResidual = o.signatureResidual;
     if (o.textureGrid >= 0)
         fitterOptions.fit.textureGrid = o.textureGrid;
     if (o.nearest)
