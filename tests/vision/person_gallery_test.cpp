@@ -87,8 +87,10 @@ TEST(PersonGallery, DifferencesCountInHowMuchEachValueVariesWithinAPerson)
 TEST(PersonGallery, TheDefaultsAreTheMeasuredOnes)
 {
     const vision::PersonGalleryOptions options;
-    EXPECT_EQ(options.shapeWeight, 0.1f);
-    EXPECT_EQ(options.acceptScore, 0.35f);
+    EXPECT_EQ(options.shapeWeight, 0.5f);
+    EXPECT_EQ(options.textureWeight, 10.f);
+    EXPECT_EQ(options.textureSpread, 7.f);
+    EXPECT_EQ(options.acceptScore, 0.33f);
     EXPECT_GT(options.appearanceSpread[0], 1.f) << "the lighting-like first mode varies most";
     EXPECT_EQ(options.appearanceSpread[vision::kFaceSignatureMaxAppearance - 1], 1.f);
     for (float s : options.shapeSpread)

@@ -585,16 +585,23 @@ void timeRecognition(const vision::AamModel& model, const vision::AamFitterOptio
     const auto one = perCall([&] {
         return fitter.appearanceParameters(viewOf(grey), state, std::span<float>(values.data(), 1));
     });
+    std::array<std::uint8_t, vision::kFaceSignatureMaxTexture> texture{};
+    const auto withTexture =
+        perCall([&] { return fitter.appearanceParameters(viewOf(grey), state, values, texture); });
     vision::FaceSignature probe;
     probe.samples = 1;
     probe.appearanceCount = std::min<int>(fitter.appearanceModeCount(), values.size());
     std::copy_n(values.begin(), probe.appearanceCount, probe.appearance.begin());
+    probe.textureCount = fitter.textureSize();
+    std::copy_n(texture.begin(), probe.textureCount, probe.texture.begin());
     const auto match = perCall([&] { return gallery.match(probe).nearestId; });
     std::fprintf(out,
                  "cost per face: appearance parameters %.3f ms per collecting frame (median %.3f; "
-                 "%d modes; the warp and error image with one mode %.3f), one match against %d "
-                 "people %.4f ms (checksum %d)\n",
-                 all.first, all.second, fitter.appearanceModeCount(), one.first, gallery.size(),
+                 "%d modes; the warp and error image with one mode %.3f), with the texture "
+                 "descriptor (%d values) %.3f ms (median %.3f), one match against %d people %.4f "
+                 "ms (checksum %d)\n",
+                 all.first, all.second, fitter.appearanceModeCount(), one.first,
+                 fitter.textureSize(), withTexture.first, withTexture.second, gallery.size(),
                  match.first, sink > 0.f ? 1 : 0);
 }
 

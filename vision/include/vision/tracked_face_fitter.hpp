@@ -49,8 +49,9 @@ struct TrackedFaceFitterOptions {
     /// For the signature only: a fit the fitter rejected for its residual alone, up to this
     /// (the fitter's maxResidual is 0.8), still counts as an ok fit for a signature that is
     /// collecting (the track follows it and its shape units freeze as an ok fit's would). It is
-    /// never shown (FaceFit::ok() stays false). 0: only ok fits (docs/people-evaluation.md).
-    float signatureMaxResidual = 0.f;
+    /// never shown (FaceFit::ok() stays false). 0: only ok fits. 1.0: chosen on a development
+    /// model (docs/people-evaluation.md: more photographs with a signature, better rank-1).
+    float signatureMaxResidual = 1.f;
 };
 
 class TrackedFaceFitter {
