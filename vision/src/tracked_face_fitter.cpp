@@ -147,11 +147,11 @@ void TrackedFaceFitter::fitFace(ConstImageView grey, const TrackedFace& face, Sl
     // shown): the track then follows it, and it counts towards the shape units' freeze.
     const int target = slot.signatureTarget > 0 ? slot.signatureTarget : options_.signatureFits;
     const float maxAngle = fitter_.options().maxAngleDegrees;
-    const bool nearMiss = !out.ok() && out.plausible && fit.outcome == AamFitOutcome::Rejected &&
-                          options_.signatureMaxResidual > 0.f &&
-                          fit.fitError <= options_.signatureMaxResidual &&
-                          std::abs(fit.yawDegrees) <= maxAngle &&
-                          std::abs(fit.pitchDegrees) <= maxAngle && slot.signature.samples < target;
+    const bool nearMiss =
+        !out.ok() && out.plausible && slot.state.headSet &&
+        fit.outcome == AamFitOutcome::Rejected && options_.signatureMaxResidual > 0.f &&
+        fit.fitError <= options_.signatureMaxResidual && std::abs(fit.yawDegrees) <= maxAngle &&
+        std::abs(fit.pitchDegrees) <= maxAngle && slot.signature.samples < target;
     if (nearMiss)
         ++slot.state.fits;
     slot.tracking = out.ok() || nearMiss;
