@@ -461,6 +461,113 @@ TEST(AamFitter, AppearanceParametersMatchAPlainReferenceAndTheWeightsAFaceWasDra
     EXPECT_EQ(two[0], ours[0]);
 }
 
+/// The texture descriptor against a plain reference: the same warp laid out on the frame's
+/// rectangle, every model pixel whose 8 neighbours were warped compared with them (round the
+/// circle from the top left), its pattern's transitions counted to find the uniform ones (58,
+/// numbered in increasing order, the rest one bin), counted per cell of a grid over the model
+/// pixels' bounding box, 255 * sqrt of each bin's share of its cell. The appearance parameters
+/// are the same with or without it.
+TEST(AamFitter, TextureDescriptorMatchesAPlainReference)
+{
+    REQUIRE_DEMO_MODEL();
+    const vision::aam::Tables t = vision::aam::buildTables(*demoModel());
+    std::mt19937 random(13);
+    const SyntheticFaceSpec spec = posedSpec(8.f, -4.f, 6.f, random);
+    const SyntheticFace face = renderSyntheticFace(*demoModel(), spec, kWidth, kHeight);
+    vision::AamFaceState state = stateAt(t, face, 0.f);
+    state.gain = spec.gain;
+    state.bias = spec.bias;
+    for (const int grid : {4, 5}) {
+        vision::AamFitterOptions options;
+        options.textureGrid = grid;
+        vision::AamFitter fitter(*demoModel(), options);
+        ASSERT_EQ(fitter.textureSize(), grid * grid * vision::kAamLbpBins);
+        std::array<float, 64> plain{}, withTexture{};
+        std::vector<std::uint8_t> ours(static_cast<std::size_t>(fitter.textureSize()));
+        const int n = fitter.appearanceParameters(face.image.view(), state, plain);
+        ASSERT_EQ(fitter.appearanceParameters(face.image.view(), state, withTexture, ours), n);
+        EXPECT_EQ(plain, withTexture);
+
+        const auto pixels = static_cast<std::size_t>(t.spanPixels);
+        std::vector<float> shape(2 * static_cast<std::size_t>(t.vertices));
+        vision::aam::shapeFromParameters(t, state.q.data(), state.p.data(), shape.data());
+        std::vector<vision::aam::TriangleAffine> maps(static_cast<std::size_t>(t.triangles));
+        vision::aam::triangleAffines(t, shape.data(), maps.data());
+        std::vector<std::int16_t> warped(pixels);
+        vision::aam::warpImage(t, maps.data(), face.image.view(), vision::AamSampling::Bilinear,
+                               warped.data());
+        const int w = demoModel()->frameWidth + 2, h = demoModel()->frameHeight + 2;
+        std::vector<int> value(static_cast<std::size_t>(w * h), -1);  // -1: not warped
+        std::vector<bool> model(static_cast<std::size_t>(w * h), false);
+        int x0 = w, x1 = -1, y0 = h, y1 = -1;
+        for (const vision::aam::WarpRun& run : t.runs)
+            for (int k = 0; k < run.count; ++k) {
+                const std::size_t span = run.offset + static_cast<std::size_t>(k);
+                const int x = run.x0 + k, y = run.y;
+                value[static_cast<std::size_t>(y * w + x)] = warped[span];
+                if (t.mask[span] != 0) {
+                    model[static_cast<std::size_t>(y * w + x)] = true;
+                    x0 = std::min(x0, x), x1 = std::max(x1, x);
+                    y0 = std::min(y0, y), y1 = std::max(y1, y);
+                }
+            }
+        std::vector<int> uniformBin(256);
+        for (int code = 0, next = 0; code < 256; ++code) {
+            int transitions = 0;
+            for (int b = 0; b < 8; ++b)
+                transitions += ((code >> b) & 1) != ((code >> ((b + 1) % 8)) & 1);
+            uniformBin[static_cast<std::size_t>(code)] = transitions <= 2 ? next++ : 58;
+        }
+        const int cells = grid * grid;
+        std::vector<double> histogram(static_cast<std::size_t>(cells * 59), 0.0);
+        std::vector<double> total(static_cast<std::size_t>(cells), 0.0);
+        const int dx[8] = {-1, 0, 1, 1, 1, 0, -1, -1}, dy[8] = {-1, -1, -1, 0, 1, 1, 1, 0};
+        for (int y = 1; y + 1 < h; ++y)
+            for (int x = 1; x + 1 < w; ++x) {
+                if (!model[static_cast<std::size_t>(y * w + x)])
+                    continue;
+                const int c = value[static_cast<std::size_t>(y * w + x)];
+                int code = 0;
+                bool all = true;
+                for (int k = 0; k < 8; ++k) {
+                    const int v = value[static_cast<std::size_t>((y + dy[k]) * w + x + dx[k])];
+                    all = all && v >= 0;
+                    code |= (v >= c ? 1 : 0) << k;
+                }
+                if (!all)
+                    continue;
+                const int cell =
+                    (y - y0) * grid / (y1 - y0 + 1) * grid + (x - x0) * grid / (x1 - x0 + 1);
+                histogram[static_cast<std::size_t>(
+                    cell * 59 + uniformBin[static_cast<std::size_t>(code)])] += 1;
+                total[static_cast<std::size_t>(cell)] += 1;
+            }
+        for (int i = 0; i < cells * 59; ++i) {
+            const double expected =
+                255.0 * std::sqrt(histogram[static_cast<std::size_t>(i)] /
+                                  std::max(total[static_cast<std::size_t>(i / 59)], 1.0));
+            ASSERT_NEAR(ours[static_cast<std::size_t>(i)], expected, 0.5 + 1e-3)
+                << "grid " << grid << " bin " << i;
+        }
+        // Each cell's values are a unit vector (255 * sqrt of shares that sum to 1).
+        for (int cell = 0; cell < cells; ++cell) {
+            double squares = 0;
+            for (int b = 0; b < 59; ++b)
+                squares += std::pow(ours[static_cast<std::size_t>(cell * 59 + b)] / 255.0, 2);
+            EXPECT_NEAR(squares, 1.0, 0.05) << "cell " << cell;
+            EXPECT_GT(total[static_cast<std::size_t>(cell)], 10)
+                << "cell " << cell;  // the oval's corners are small
+        }
+        std::vector<std::uint8_t> tooSmall(ours.size() - 1, 7);
+        fitter.appearanceParameters(face.image.view(), state, plain, tooSmall);
+        EXPECT_EQ(tooSmall, std::vector<std::uint8_t>(ours.size() - 1, 7))
+            << "too small: untouched";
+    }
+    vision::AamFitterOptions none;
+    none.textureGrid = 0;
+    EXPECT_EQ(vision::AamFitter(*demoModel(), none).textureSize(), 0);
+}
+
 TEST(AamFitter, AppearanceParametersAllocateNothing)
 {
     REQUIRE_DEMO_MODEL();
@@ -479,9 +586,12 @@ TEST(AamFitter, AppearanceParametersAllocateNothing)
         options.appearanceSampling = sampling;
         vision::AamFitter fitter(*demoModel(), options);
         std::array<float, 64> out{};
+        std::array<std::uint8_t, vision::kAamMaxTextureBins> texture{};
         testing_support::AllocationScope scope;
         const int n = fitter.appearanceParameters(face.image.view(), state, out);
         EXPECT_GT(n, 0);
+        EXPECT_EQ(fitter.appearanceParameters(face.image.view(), state, out, texture), n)
+            << "with the texture descriptor too";
         EXPECT_EQ(scope.counts().cxxNew, 0);
         EXPECT_EQ(scope.counts().ownMalloc, 0);
     }

@@ -87,10 +87,49 @@ TEST(PersonGallery, DifferencesCountInHowMuchEachValueVariesWithinAPerson)
 TEST(PersonGallery, TheDefaultsAreTheMeasuredOnes)
 {
     const vision::PersonGalleryOptions options;
-    EXPECT_EQ(options.shapeWeight, 0.1f);
-    EXPECT_EQ(options.acceptScore, 0.35f);
+    EXPECT_EQ(options.shapeWeight, 0.5f);
+    EXPECT_EQ(options.textureWeight, 10.f);
+    EXPECT_EQ(options.textureSpread, 7.f);
+    EXPECT_EQ(options.acceptScore, 0.33f);
     EXPECT_GT(options.appearanceSpread[0], 1.f) << "the lighting-like first mode varies most";
     EXPECT_EQ(options.appearanceSpread[vision::kFaceSignatureMaxAppearance - 1], 1.f);
     for (float s : options.shapeSpread)
         EXPECT_GT(s, 0.f);
+}
+
+// The texture descriptor's part: off at weight 0; at a weight, its Hellinger distance (in units
+// of textureSpread) decides between persons the other parts cannot tell apart; descriptors of
+// different sizes (another grid) are not compared.
+TEST(PersonGallery, TheTextureCountsAtItsWeightInItsSpreadsUnits)
+{
+    auto withTexture = [](std::uint8_t level) {
+        vision::FaceSignature s = signature(0.f, 0.5f);
+        s.textureCount = 16 * vision::kAamLbpBins;
+        for (int i = 0; i < s.textureCount; ++i)
+            s.texture[static_cast<std::size_t>(i)] =
+                static_cast<std::uint8_t>(i % 3 == 0 ? level : 255 - level);
+        return s;
+    };
+    vision::PersonGalleryOptions options;
+    options.textureWeight = 0.f;
+    vision::PersonGallery gallery(options);
+    gallery.enrol(1, withTexture(40));
+    gallery.enrol(2, withTexture(200));
+    const vision::FaceSignature probe = withTexture(190);
+    EXPECT_FLOAT_EQ(gallery.score(1, probe), gallery.score(2, probe)) << "weight 0: ignored";
+
+    options.textureWeight = 1.f;
+    options.textureSpread = 10.f;
+    gallery.setOptions(options);
+    EXPECT_EQ(gallery.match(probe).nearestId, 2);
+    // Every value 10 apart, one spread: the texture part's mean square is 1 (the shape and
+    // appearance parts are 0: identical), d^2 the weighted mean of the three parts.
+    EXPECT_NEAR(gallery.score(2, probe),
+                1.f / (1.f + 1.f / (options.shapeWeight + 1.f + options.textureWeight)), 1e-5f);
+    vision::FaceSignature otherGrid = probe;
+    otherGrid.textureCount = 25 * vision::kAamLbpBins;
+    options.shapeWeight = 0.f;
+    gallery.setOptions(options);
+    EXPECT_FLOAT_EQ(gallery.score(1, otherGrid), gallery.score(2, otherGrid))
+        << "another grid's descriptor is not compared";
 }

@@ -189,6 +189,19 @@ TEST(TrackedFaceFitter, ASignatureSettlesAfterItsFitsAndEnrolmentCanAskForMore)
     for (int i = 0; i < settled.appearanceCount; ++i)
         magnitude += std::abs(settled.appearance[static_cast<std::size_t>(i)]);
     EXPECT_GT(magnitude, 0.f);
+    ASSERT_EQ(settled.textureCount, fitter.options().fit.textureGrid *
+                                        fitter.options().fit.textureGrid * vision::kAamLbpBins)
+        << "the texture descriptor is in the signature";
+    // Each cell's values (255 * sqrt of its patterns' shares) are about a unit vector.
+    for (int cell = 0; cell * vision::kAamLbpBins < settled.textureCount; ++cell) {
+        float squares = 0.f;
+        for (int b = 0; b < vision::kAamLbpBins; ++b) {
+            const float v =
+                settled.texture[static_cast<std::size_t>(cell * vision::kAamLbpBins + b)];
+            squares += v * v / (255.f * 255.f);
+        }
+        EXPECT_NEAR(squares, 1.f, 0.1f) << "cell " << cell;
+    }
     fitter.process(face.image.view(), {&tracked, 1});
     EXPECT_EQ(fitter.fits()[0].signature.samples, 3) << "a settled signature no longer changes";
 
@@ -218,4 +231,38 @@ TEST(TrackedFaceFitter, CollectingASignatureAllocatesNothing)
     EXPECT_EQ(scope.counts().ownMalloc, 0);
     EXPECT_GT(fitter.fits()[0].signature.samples, 0) << "the signature was collecting";
     EXPECT_FALSE(fitter.fits()[0].signatureSettled);
+}
+
+// For the signature only: fits the fitter rejects for a residual above its maxResidual (here set
+// below any fit's) but within signatureMaxResidual still make a signature, while none is shown;
+// without it (0) they make none. The default takes residuals up to 1.0.
+TEST(TrackedFaceFitter, FitsRejectedOnlyForTheirResidualCanStillMakeASignature)
+{
+    REQUIRE_DEMO_MODEL();
+    EXPECT_EQ(vision::TrackedFaceFitterOptions{}.signatureMaxResidual, 1.f);
+    const SyntheticFace face = posedFace(5.f, 0.f, 0.f, 0.f);
+    for (const float signatureResidual : {0.f, 50.f}) {
+        vision::TrackedFaceFitterOptions options;
+        options.signatureFits = 3;
+        options.fit.maxResidual = 1e-4f;  // every fit rejected for its residual
+        options.signatureMaxResidual = signatureResidual;
+        vision::TrackedFaceFitter fitter(*demoModel(), options);
+        const vision::TrackedFace tracked =
+            trackedFace(4, face.box(4.f), fitter.options().placement);
+        for (int frame = 0; frame < 12; ++frame) {
+            fitter.process(face.image.view(), {&tracked, 1});
+            const vision::FaceFit& fit = fitter.fits()[0];
+            ASSERT_FALSE(fit.ok()) << "frame " << frame << ": never shown";
+            ASSERT_EQ(fit.outcome, vision::AamFitOutcome::Rejected) << "frame " << frame;
+        }
+        const vision::FaceFit& last = fitter.fits()[0];
+        if (signatureResidual > 0.f) {
+            EXPECT_TRUE(last.signatureSettled);
+            EXPECT_EQ(last.signature.samples, 3);
+            EXPECT_GT(last.signature.textureCount, 0);
+        } else {
+            EXPECT_EQ(last.signature.samples, 0) << "only ok fits";
+            EXPECT_FALSE(last.signatureSettled);
+        }
+    }
 }

@@ -187,9 +187,10 @@ int main(int argc, char** argv)
     aamCmd->add_flag("--all-persons", aam.allPersons,
                      "--imm: every person, also those the demo model was built from "
                      "(person-specific)");
-    aamCmd->add_option("--fitter", aam.fitter,
-                       "our side: aam (vision's fit as the firmware runs it; needs --model) or "
-                       "baseline (the mean shape placed by the box)")
+    aamCmd
+        ->add_option("--fitter", aam.fitter,
+                     "our side: aam (vision's fit as the firmware runs it; needs --model) or "
+                     "baseline (the mean shape placed by the box)")
         ->capture_default_str();
     aamCmd->add_option("--model", aam.model, "the .aam model file a real fit loads");
     aam.dataDir = tool_data::defaultDir();
@@ -240,6 +241,12 @@ int main(int argc, char** argv)
     peopleCmd->add_option("--appearance-weight", people.appearanceWeight,
                           "the gallery's appearanceWeight");
     peopleCmd->add_option("--dump", people.dump, "write every signature to this CSV");
+    peopleCmd->add_option("--texture-weight", people.textureWeight, "the gallery's textureWeight");
+    peopleCmd->add_option("--texture-spread", people.textureSpread, "the gallery's textureSpread");
+    peopleCmd->add_option("--signature-residual", people.signatureResidual,
+                          "fits rejected only by a residual up to this still make signatures");
+    peopleCmd->add_option("--texture-grid", people.textureGrid,
+                          "the texture descriptor's cells per side (0: none)");
     peopleCmd->add_flag("--nearest", people.nearest,
                         "the appearance parameters from the nearest pixel (the fit's sampling)");
     peopleCmd->add_flag("--per-image", people.perImage, "say why a photograph has no signature");

@@ -143,6 +143,10 @@ vision::FaceSignature merged(const vision::FaceSignature& a, const vision::FaceS
         m.shapeUnits[i] = wa * a.shapeUnits[i] + (1.f - wa) * b.shapeUnits[i];
     for (std::size_t i = 0; i < m.appearance.size(); ++i)
         m.appearance[i] = wa * a.appearance[i] + (1.f - wa) * b.appearance[i];
+    if (a.textureCount == b.textureCount)
+        for (std::size_t i = 0; i < m.texture.size(); ++i)
+            m.texture[i] = static_cast<std::uint8_t>(
+                std::lround(wa * a.texture[i] + (1.f - wa) * b.texture[i]));
     m.samples = a.samples + b.samples;
     return m;
 }
@@ -187,6 +191,9 @@ void dumpSignature(std::ostream& csv, const std::string& who, int person, int ty
     csv << ',' << s.appearanceCount;
     for (int i = 0; i < s.appearanceCount; ++i)
         csv << ',' << s.appearance[static_cast<std::size_t>(i)];
+    csv << ',' << s.textureCount;
+    for (int i = 0; i < s.textureCount; ++i)
+        csv << ',' << static_cast<int>(s.texture[static_cast<std::size_t>(i)]);
     csv << '\n';
 }
 
@@ -578,16 +585,23 @@ void timeRecognition(const vision::AamModel& model, const vision::AamFitterOptio
     const auto one = perCall([&] {
         return fitter.appearanceParameters(viewOf(grey), state, std::span<float>(values.data(), 1));
     });
+    std::array<std::uint8_t, vision::kFaceSignatureMaxTexture> texture{};
+    const auto withTexture =
+        perCall([&] { return fitter.appearanceParameters(viewOf(grey), state, values, texture); });
     vision::FaceSignature probe;
     probe.samples = 1;
     probe.appearanceCount = std::min<int>(fitter.appearanceModeCount(), values.size());
     std::copy_n(values.begin(), probe.appearanceCount, probe.appearance.begin());
+    probe.textureCount = fitter.textureSize();
+    std::copy_n(texture.begin(), probe.textureCount, probe.texture.begin());
     const auto match = perCall([&] { return gallery.match(probe).nearestId; });
     std::fprintf(out,
                  "cost per face: appearance parameters %.3f ms per collecting frame (median %.3f; "
-                 "%d modes; the warp and error image with one mode %.3f), one match against %d "
-                 "people %.4f ms (checksum %d)\n",
-                 all.first, all.second, fitter.appearanceModeCount(), one.first, gallery.size(),
+                 "%d modes; the warp and error image with one mode %.3f), with the texture "
+                 "descriptor (%d values) %.3f ms (median %.3f), one match against %d people %.4f "
+                 "ms (checksum %d)\n",
+                 all.first, all.second, fitter.appearanceModeCount(), one.first,
+                 fitter.textureSize(), withTexture.first, withTexture.second, gallery.size(),
                  match.first, sink > 0.f ? 1 : 0);
 }
 
@@ -621,6 +635,10 @@ int run(const PeopleEvalOptions& o, std::FILE* out)
     if (!file.ok)
         throw std::runtime_error(file.problem);
     vision::TrackedFaceFitterOptions fitterOptions;
+    if (o.signatureResidual >= 0.f)
+        fitterOptions.signatureMaxResidual = o.signatureResidual;
+    if (o.textureGrid >= 0)
+        fitterOptions.fit.textureGrid = o.textureGrid;
     if (o.nearest)
         fitterOptions.fit.appearanceSampling = vision::AamSampling::Nearest;
     vision::TrackedFaceFitter fitter(file.model, fitterOptions);
@@ -632,6 +650,10 @@ int run(const PeopleEvalOptions& o, std::FILE* out)
         galleryOptions.shapeWeight = o.shapeWeight;
     if (o.appearanceWeight >= 0.f)
         galleryOptions.appearanceWeight = o.appearanceWeight;
+    if (o.textureWeight >= 0.f)
+        galleryOptions.textureWeight = o.textureWeight;
+    if (o.textureSpread > 0.f)
+        galleryOptions.textureSpread = o.textureSpread;
     std::ofstream csvFile;
     std::ostream* csv = nullptr;
     if (!o.dump.empty()) {
@@ -643,10 +665,13 @@ int run(const PeopleEvalOptions& o, std::FILE* out)
     std::fprintf(out,
                  "model %s; boxes: Viola-Jones (%s) on the image shrunk by 2; signature: %d ok "
                  "fits after the shape units froze (at most %d fits of a still image); gallery: "
-                 "shape weight %.2f, appearance weight %.2f, acceptScore %.3f\n",
+                 "shape weight %.2f, appearance weight %.2f, texture weight %.2f (spread %.1f), "
+                 "acceptScore %.3f\n",
                  o.model.c_str(), o.cascade.c_str(), fitter.options().signatureFits, o.maxFits,
                  static_cast<double>(galleryOptions.shapeWeight),
                  static_cast<double>(galleryOptions.appearanceWeight),
+                 static_cast<double>(galleryOptions.textureWeight),
+                 static_cast<double>(galleryOptions.textureSpread),
                  static_cast<double>(galleryOptions.acceptScore));
     ImmResult immResult;
     vision::PersonGallery fgnetGallery(galleryOptions);

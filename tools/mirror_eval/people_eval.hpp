@@ -43,6 +43,10 @@ struct PeopleEvalOptions {
     int maxFits = 30;          ///< fits of one still image before its signature must have settled
     float acceptScore = -1.f;  ///< < 0: the gallery's default
     float shapeWeight = -1.f, appearanceWeight = -1.f;  ///< < 0: the gallery's default
+    float textureWeight = -1.f, textureSpread = -1.f;   ///< < 0: the gallery's default
+    float signatureResidual =
+        -1.f;               ///< TrackedFaceFitterOptions::signatureMaxResidual (< 0: default)
+    int textureGrid = -1;   ///< the texture descriptor's cells per side (< 0: the fitter's default)
     bool nearest = false;   ///< appearance parameters from the nearest pixel, not bilinear
     bool perImage = false;  ///< say why an IMM photograph has no signature
     std::string dump;       ///< write every signature to this CSV (for measuring distances)

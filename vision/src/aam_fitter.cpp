@@ -32,6 +32,7 @@
 #include "aam_head_projection.hpp"
 #include "aam_head_term.hpp"
 #include "aam_kernels.hpp"
+#include "aam_texture.hpp"
 #include "aam_warp.hpp"
 
 #include <Eigen/Cholesky>
@@ -57,7 +58,11 @@ constexpr float kDegrees = 180.f / std::numbers::pi_v<float>;
 }  // namespace
 
 struct AamFitter::Tables : aam::Tables {
-    explicit Tables(aam::Tables t) : aam::Tables(std::move(t)) {}
+    Tables(aam::Tables t, int textureGrid)
+        : aam::Tables(std::move(t)), texture(aam::textureLayout(*this, textureGrid))
+    {
+    }
+    aam::TextureLayout texture;  ///< the texture descriptor's cells (appearanceParameters)
 };
 
 struct AamFitter::Scratch {
@@ -66,6 +71,8 @@ struct AamFitter::Scratch {
     std::vector<float> shape, before, head;
     std::vector<aam::HeadJacobian> headJacobian;
     std::vector<float> bestShape;
+    std::vector<std::int16_t> textureFrame;       ///< the warp laid out as the frame's rectangle
+    std::vector<std::uint16_t> textureHistogram;  ///< the descriptor's counts
     /// The gain the objective is measured in during one fit (its start's): fixed, so that a step
     /// that lowers the gain is not charged for the larger residual it measures in its own units.
     float referenceGain = 1.f;
@@ -73,7 +80,7 @@ struct AamFitter::Scratch {
     ParameterVector rhs, step;
     Eigen::LDLT<ParameterMatrix> solver;
 
-    explicit Scratch(const aam::Tables& t)
+    explicit Scratch(const AamFitter::Tables& t)
         : warped(static_cast<std::size_t>(t.spanPixels)),
           error(static_cast<std::size_t>(t.spanPixels)),
           triangleMaps(static_cast<std::size_t>(t.triangles)),
@@ -83,6 +90,9 @@ struct AamFitter::Scratch {
           head(2 * static_cast<std::size_t>(t.vertices)),
           headJacobian(static_cast<std::size_t>(t.vertices)),
           bestShape(2 * static_cast<std::size_t>(t.vertices)),
+          textureFrame(static_cast<std::size_t>(t.texture.width) *
+                       static_cast<std::size_t>(t.texture.height)),
+          textureHistogram(static_cast<std::size_t>(t.texture.bins())),
           hessian(6 + t.shapeModeCount + aam::kHeadParameters,
                   6 + t.shapeModeCount + aam::kHeadParameters),
           damped(hessian.rows(), hessian.cols()),
@@ -218,7 +228,7 @@ const char* aamFitOutcomeName(AamFitOutcome outcome) noexcept
 }
 
 AamFitter::AamFitter(const AamModel& model, const AamFitterOptions& options)
-    : tables_(std::make_unique<Tables>(aam::buildTables(model))),
+    : tables_(std::make_unique<Tables>(aam::buildTables(model), options.textureGrid)),
       scratch_(std::make_unique<Scratch>(*tables_)),
       options_(options)
 {
@@ -251,6 +261,18 @@ int AamFitter::appearanceModeCount() const noexcept
 int AamFitter::appearanceParameters(ConstImageView grey, const AamFaceState& face,
                                     std::span<float> out) noexcept
 {
+    return appearanceParameters(grey, face, out, {});
+}
+
+int AamFitter::textureSize() const noexcept
+{
+    return tables_->texture.bins();
+}
+
+// The texture descriptor (aam_texture.cpp) from the same warp, before the error image.
+int AamFitter::appearanceParameters(ConstImageView grey, const AamFaceState& face,
+                                    std::span<float> out, std::span<std::uint8_t> texture) noexcept
+{
     const aam::Tables& t = *tables_;
     Scratch& s = *scratch_;
     const int n = static_cast<int>(std::min(out.size(), t.appearanceModes.size()));
@@ -259,6 +281,9 @@ int AamFitter::appearanceParameters(ConstImageView grey, const AamFaceState& fac
     aam::shapeFromParameters(t, face.q.data(), face.p.data(), s.shape.data());
     aam::triangleAffines(t, s.shape.data(), s.triangleMaps.data());
     aam::warpImage(t, s.triangleMaps.data(), grey, options_.appearanceSampling, s.warped.data());
+    if (!texture.empty())
+        aam::textureOf(tables_->texture, s.warped.data(), s.textureFrame.data(),
+                       s.textureHistogram.data(), texture);
     errorImageOf(t, face, s.warped.data(), s.error.data());
     const double toAppearance = 1.0 / (aam::kErrorOne * static_cast<double>(face.gain));
     for (int k = 0; k < n; ++k) {

@@ -142,9 +142,20 @@ void TrackedFaceFitter::fitFace(ConstImageView grey, const TrackedFace& face, Sl
                     shift <= options_.maxCentreShift * face.size &&
                     width >= options_.minWidthRatio * box.width &&
                     width <= options_.maxWidthRatio * box.width;
-    // A failed fit is not carried on: the next frame starts again from the tracker's box.
-    slot.tracking = out.ok();
-    updateSignature(grey, slot, out);
+    // A failed fit is not carried on: the next frame starts again from the tracker's box. A
+    // collecting signature may take a fit rejected only for a residual slightly too large (never
+    // shown): the track then follows it, and it counts towards the shape units' freeze.
+    const int target = slot.signatureTarget > 0 ? slot.signatureTarget : options_.signatureFits;
+    const float maxAngle = fitter_.options().maxAngleDegrees;
+    const bool nearMiss =
+        !out.ok() && out.plausible && slot.state.headSet &&
+        fit.outcome == AamFitOutcome::Rejected && options_.signatureMaxResidual > 0.f &&
+        fit.fitError <= options_.signatureMaxResidual && std::abs(fit.yawDegrees) <= maxAngle &&
+        std::abs(fit.pitchDegrees) <= maxAngle && slot.signature.samples < target;
+    if (nearMiss)
+        ++slot.state.fits;
+    slot.tracking = out.ok() || nearMiss;
+    updateSignature(grey, slot, out, out.ok() || nearMiss);
 }
 
 bool TrackedFaceFitter::collectSignature(int faceId, int fits) noexcept
@@ -162,17 +173,34 @@ bool TrackedFaceFitter::collectSignature(int faceId, int fits) noexcept
 // proportions, not a first guess), averaged as a running mean so it never needs a buffer. The
 // appearance parameters (a warp and one dot product per mode) are computed only for those fits,
 // so a settled track costs nothing more per frame.
-void TrackedFaceFitter::updateSignature(ConstImageView grey, Slot& slot, FaceFit& out) noexcept
+void TrackedFaceFitter::updateSignature(ConstImageView grey, Slot& slot, FaceFit& out,
+                                        bool usable) noexcept
 {
     const int target = slot.signatureTarget > 0 ? slot.signatureTarget : options_.signatureFits;
     FaceSignature& sig = slot.signature;
-    if (out.ok() && slot.state.fits > fitter_.options().fitsBeforeShapeFreeze &&
+    if (usable && slot.state.fits > fitter_.options().fitsBeforeShapeFreeze &&
         sig.samples < target) {
         const float w = 1.f / static_cast<float>(sig.samples + 1);
         for (int i = 0; i < kAamShapeUnits; ++i)
             sig.shapeUnits[i] += w * (slot.state.head.sigma[i] - sig.shapeUnits[i]);
         std::array<float, kFaceSignatureMaxAppearance> appearance{};
-        const int count = fitter_.appearanceParameters(grey, slot.state, appearance);
+        std::array<std::uint8_t, kFaceSignatureMaxTexture> texture{};
+        const int count = fitter_.appearanceParameters(grey, slot.state, appearance, texture);
+        const int textureCount = std::min(fitter_.textureSize(), kFaceSignatureMaxTexture);
+        if (sig.samples == 0 || textureCount != sig.textureCount) {
+            sig.textureCount = textureCount;
+            std::copy_n(texture.begin(), textureCount, sig.texture.begin());
+        } else {
+            // The running mean in whole units (each step rounded to the nearest).
+            for (int i = 0; i < textureCount; ++i) {
+                auto& v = sig.texture[static_cast<std::size_t>(i)];
+                v = static_cast<std::uint8_t>(std::clamp(
+                    static_cast<int>(std::lround(
+                        static_cast<float>(v) +
+                        w * static_cast<float>(texture[static_cast<std::size_t>(i)] - v))),
+                    0, 255));
+            }
+        }
         if (sig.samples == 0 || count != sig.appearanceCount) {
             // The first sample (or, never with one model, a count that changed): start afresh.
             sig.appearanceCount = count;

@@ -27,6 +27,11 @@ inline constexpr int kAamAnimationUnits = 6;  ///< in the order of kTrackedAnima
 inline constexpr int kAamShapeUnits = 10;     ///< in the order of kTrackedShapeUnits
 inline constexpr int kAamMaxShapeModes = 24;
 inline constexpr int kAamMaxVertices = 128;
+/// The texture descriptor (appearanceParameters' second output): uniform local binary patterns,
+/// this many bins per cell, in at most kAamMaxTextureGrid x kAamMaxTextureGrid cells.
+inline constexpr int kAamLbpBins = 59;
+inline constexpr int kAamMaxTextureGrid = 5;
+inline constexpr int kAamMaxTextureBins = kAamMaxTextureGrid * kAamMaxTextureGrid * kAamLbpBins;
 
 enum class AamSampling : std::uint8_t {
     Nearest,   ///< the nearest pixel (5.3.4: what the fit runs with)
@@ -54,6 +59,9 @@ struct AamFitterOptions {
     /// How appearanceParameters() samples the image: it runs only while a face's signature is
     /// collected (a few frames per track), so it can afford interpolation.
     AamSampling appearanceSampling = AamSampling::Bilinear;
+    /// The texture descriptor's cells per side of the mean shape's frame (0: none; at most
+    /// kAamMaxTextureGrid).
+    int textureGrid = 4;
 };
 
 /// Where a face's mesh starts, from a face box (the tracker's position, scale and roll): the
@@ -145,6 +153,15 @@ public:
     /// products (aam_kernels.hpp), the fitter's scratch: no allocation, no throw.
     int appearanceParameters(ConstImageView grey, const AamFaceState& face,
                              std::span<float> out) noexcept;
+    /// The same, and from the same warp the face's texture descriptor into `texture` (beyond §6):
+    /// each cell's (options().textureGrid squared, over the mean shape's frame) histogram of
+    /// uniform local binary patterns (8 neighbours, 59 bins), as 255 * sqrt(the bin's share of
+    /// its cell), so that Euclidean distance is the Hellinger distance. Writes textureSize()
+    /// values when `texture` holds them (else none); integer but the final square roots.
+    int appearanceParameters(ConstImageView grey, const AamFaceState& face, std::span<float> out,
+                             std::span<std::uint8_t> texture) noexcept;
+    /// How many values the texture descriptor has (cells * kAamLbpBins; 0: none).
+    int textureSize() const noexcept;
     /// The appearance modes appearanceParameters() projects on.
     int appearanceModeCount() const noexcept;
 

@@ -19,11 +19,16 @@ std::array<float, kAamShapeUnits> defaultShapeSpread() noexcept;
 
 struct PersonGalleryOptions {
     /// A face whose best score is below this is nobody enrolled (a guest).
-    float acceptScore = 0.35f;
-    /// What the distance weighs (0 turns a part off): the shape units and the appearance. The
-    /// shape units help a little at a tenth of the appearance's weight (person_gallery.cpp).
-    float shapeWeight = 0.1f;
+    float acceptScore = 0.33f;
+    /// What the distance weighs (0 turns a part off): the shape units, the appearance and the
+    /// texture, chosen on a development model (person_gallery.cpp).
+    float shapeWeight = 0.5f;
     float appearanceWeight = 1.f;
+    /// The texture descriptor's weight (0: off) and its within-person spread: the rms, over the
+    /// descriptor's values, of their deviation from the person's mean (in the descriptor's units,
+    /// 255 = a whole cell's share; person_gallery.cpp).
+    float textureWeight = 10.f;
+    float textureSpread = 7.f;
     std::array<float, kFaceSignatureMaxAppearance> appearanceSpread = defaultAppearanceSpread();
     std::array<float, kAamShapeUnits> shapeSpread = defaultShapeSpread();
 };

@@ -46,6 +46,12 @@ struct TrackedFaceFitterOptions {
     /// Who a face is (FaceFit::signature) is the mean of a track's first this many ok fits taken
     /// after its shape units froze; then it is settled (§6).
     int signatureFits = 8;
+    /// For the signature only: a fit the fitter rejected for its residual alone, up to this
+    /// (the fitter's maxResidual is 0.8), still counts as an ok fit for a signature that is
+    /// collecting (the track follows it and its shape units freeze as an ok fit's would). It is
+    /// never shown (FaceFit::ok() stays false). 0: only ok fits. 1.0: chosen on a development
+    /// model (docs/people-evaluation.md: more photographs with a signature, better rank-1).
+    float signatureMaxResidual = 1.f;
 };
 
 class TrackedFaceFitter {
@@ -87,7 +93,7 @@ private:
     };
     Slot* slotFor(int faceId) noexcept;
     void fitFace(ConstImageView grey, const TrackedFace& face, Slot& slot, FaceFit& out) noexcept;
-    void updateSignature(ConstImageView grey, Slot& slot, FaceFit& out) noexcept;
+    void updateSignature(ConstImageView grey, Slot& slot, FaceFit& out, bool usable) noexcept;
 
     AamFitter fitter_;
     TrackedFaceFitterOptions options_;
