@@ -42,6 +42,41 @@ int appendFloats(char* text, std::size_t size, int n, const float* values, int c
     return n < static_cast<int>(size) ? n : -1;
 }
 
+/// Appends `bytes` as a TOML string of hex digits ("\"0a1f...\""); the new length, or -1.
+int appendHex(char* text, std::size_t size, int n, const std::uint8_t* bytes, int count) noexcept
+{
+    static constexpr char kDigits[] = "0123456789abcdef";
+    if (n < 0 || static_cast<std::size_t>(n) + 2 * static_cast<std::size_t>(count) + 4 > size)
+        return -1;
+    text[n++] = '"';
+    for (int i = 0; i < count; ++i) {
+        text[n++] = kDigits[bytes[i] >> 4];
+        text[n++] = kDigits[bytes[i] & 15];
+    }
+    text[n++] = '"';
+    text[n++] = '\n';
+    text[n] = '\0';
+    return n;
+}
+
+/// A hex string of at most `capacity` bytes into `out`; how many, or -1.
+int readHex(const toml::node_view<const toml::node> node, std::uint8_t* out, int capacity)
+{
+    const std::optional<std::string_view> hex = node.value<std::string_view>();
+    if (!hex || hex->size() % 2 != 0 || hex->size() / 2 > static_cast<std::size_t>(capacity))
+        return -1;
+    const auto digit = [](char c) {
+        return c >= '0' && c <= '9' ? c - '0' : c >= 'a' && c <= 'f' ? c - 'a' + 10 : -1;
+    };
+    for (std::size_t i = 0; i < hex->size(); i += 2) {
+        const int hi = digit((*hex)[i]), lo = digit((*hex)[i + 1]);
+        if (hi < 0 || lo < 0)
+            return -1;
+        out[i / 2] = static_cast<std::uint8_t>(hi * 16 + lo);
+    }
+    return static_cast<int>(hex->size() / 2);
+}
+
 /// A float array of at most `capacity` finite numbers; its length, or -1.
 int readFloats(const toml::node_view<const toml::node> node, float* out, int capacity)
 {
@@ -103,6 +138,17 @@ bool decodePerson(const toml::table& t, std::string_view stem, std::uint32_t mod
         return false;
     }
     p.signature.appearanceCount = appearance;
+    // The texture descriptor (beyond §6); a file written before it has none and is matched on
+    // the shape units and the appearance alone.
+    const int texture = t.contains("texture") ? readHex(t["texture"], p.signature.texture.data(),
+                                                        vision::kFaceSignatureMaxTexture)
+                                              : 0;
+    if (texture < 0) {
+        problem = "texture must be a string of at most " +
+                  std::to_string(2 * vision::kFaceSignatureMaxTexture) + " hex digits";
+        return false;
+    }
+    p.signature.textureCount = texture;
     if (t.contains("overlay")) {
         const std::optional<std::string> overlay = t["overlay"].value<std::string>();
         if (!overlay || overlay->empty() || !copyName(*overlay, p.overlay, sizeof p.overlay) ||
@@ -244,7 +290,7 @@ bool PersonStore::save(const Person& p) noexcept
 {
     if (!usable_)
         return false;
-    char text[4096];
+    char text[8192];  // the texture's hex digits (at most 2950) and 74 floats fit
     int n = std::snprintf(text, sizeof text,
                           "# a person the mirror knows (person add): their face signature's "
                           "numbers, never an image\nname = \"%s\"\nmodel = \"crc32:%08x\"\n"
@@ -256,6 +302,11 @@ bool PersonStore::save(const Person& p) noexcept
         n = appendFloats(text, sizeof text, n, p.signature.appearance.data(),
                          std::clamp(p.signature.appearanceCount, 0,
                                     vision::kFaceSignatureMaxAppearance));
+    }
+    if (n >= 0 && p.signature.textureCount > 0) {
+        n += std::snprintf(text + n, sizeof text - static_cast<std::size_t>(n), "texture = ");
+        n = appendHex(text, sizeof text, n, p.signature.texture.data(),
+                      std::clamp(p.signature.textureCount, 0, vision::kFaceSignatureMaxTexture));
     }
     if (n >= 0 && p.overlay[0])
         n += std::snprintf(text + n, sizeof text - static_cast<std::size_t>(n),

@@ -22,6 +22,9 @@ firmware::Person person(const char* name, float value)
     p.signature.appearanceCount = 3;
     p.signature.appearance[0] = -value;
     p.signature.appearance[2] = 1e-7f;
+    p.signature.textureCount = vision::kFaceSignatureMaxTexture;
+    for (int i = 0; i < p.signature.textureCount; ++i)
+        p.signature.texture[static_cast<std::size_t>(i)] = static_cast<std::uint8_t>(i * 7 + 1);
     p.signature.samples = 24;
     return p;
 }
@@ -67,6 +70,8 @@ TEST(PersonStore, APersonComesBackAsWrittenAndTheFileIsTheServicesAlone)
     EXPECT_EQ(people[0].signature.shapeUnits, anna.signature.shapeUnits);
     EXPECT_EQ(people[0].signature.appearanceCount, 3);
     EXPECT_EQ(people[0].signature.appearance, anna.signature.appearance) << "bit for bit";
+    EXPECT_EQ(people[0].signature.textureCount, vision::kFaceSignatureMaxTexture);
+    EXPECT_EQ(people[0].signature.texture, anna.signature.texture);
     EXPECT_EQ(people[0].signature.samples, 24);
     EXPECT_STREQ(people[0].overlay, "top_hat");
     EXPECT_EQ(people[0].birthdayMonth * 100 + people[0].birthdayDay, 314);
@@ -91,6 +96,9 @@ TEST(PersonStore, CorruptUnreadableAndForeignFilesAreSkippedWithAWarningNamingTh
     std::ofstream(dir + "short.toml") << "name = \"short\"\nmodel = \"crc32:22222222\"\n"
                                          "samples = 3\nshape = [1.0, 2.0]\n";
     std::ofstream(dir + "renamed.toml") << "name = \"someone\"\n";
+    std::ofstream(dir + "texture.toml") << "name = \"texture\"\nmodel = \"crc32:22222222\"\n"
+                                           "samples = 3\nshape = [0, 0, 0, 0, 0, 0, 0, 0, 0, 0]\n"
+                                           "texture = \"0a1g\"\n";
     ASSERT_EQ(::mkfifo((dir + "fifo.toml").c_str(), 0600), 0) << "a FIFO: unreadable as a file";
     std::ofstream(dir + "notes.txt") << "not a person";
 
@@ -98,8 +106,8 @@ TEST(PersonStore, CorruptUnreadableAndForeignFilesAreSkippedWithAWarningNamingTh
     const std::vector<firmware::Person> people = store.loadAll(warnings);
     ASSERT_EQ(people.size(), 1u);
     EXPECT_STREQ(people[0].name, "good");
-    ASSERT_EQ(warnings.size(), 5u);
-    for (const char* name : {"broken", "short", "renamed", "fifo", "foreign"}) {
+    ASSERT_EQ(warnings.size(), 6u);
+    for (const char* name : {"broken", "short", "renamed", "texture", "fifo", "foreign"}) {
         bool named = false;
         for (const std::string& w : warnings)
             named = named || w.find(dir + name + ".toml") != std::string::npos;
