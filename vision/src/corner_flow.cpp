@@ -170,8 +170,7 @@ void CornerFlow::tellRule(Track& t, StaticFaceRule& rule, const MotionModel& mod
                                 t.face.age,
                                 survived,
                                 shift,
-                                std::hypot(view.x, view.y),
-                                view});
+                                std::hypot(view.x, view.y)});
 }
 
 void CornerFlow::move(Track& t, const MotionModel& model, int pairs) noexcept
