@@ -170,7 +170,8 @@ void CornerFlow::tellRule(Track& t, StaticFaceRule& rule, const MotionModel& mod
                                 t.face.age,
                                 survived,
                                 shift,
-                                std::hypot(view.x, view.y)});
+                                std::hypot(view.x, view.y),
+                                view});
 }
 
 void CornerFlow::move(Track& t, const MotionModel& model, int pairs) noexcept

@@ -75,7 +75,9 @@ long FaceSearch::scan(const Frame& frame) noexcept
         prepareMask(frame);
     // A cold start's scan is not spread over frames: the faces in view when the mirror starts
     // (or its camera comes back) are all found in that one frame, which may take longer.
-    budget_ = cold_ ? 0 : options_.detectionWindowBudget;
+    // What the edge bands' scan (EntryScan) spent of the budget comes out of this one's.
+    const long budget = options_.detectionWindowBudget;
+    budget_ = cold_ || budget <= 0 ? 0 : std::max(1L, budget - frame.spent);
     const int detected = detect(frame, exclude);
     if (done_) {
         coldStart_ = false;

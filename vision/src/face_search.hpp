@@ -32,6 +32,7 @@ public:
         const IntegralImage* motion;
         std::span<const Track> tracks;
         int frameIndex;
+        long spent = 0;  ///< windows of this frame's budget already spent (EntryScan's)
     };
 
     /// Allocates the detector, the mask and the hit list.

@@ -82,9 +82,10 @@ bool LivenessCue::medianFlow(std::span<const Point2f> from, std::span<const Poin
 
 void LivenessCue::addFlowStep(SwayHistory& history, std::span<const Point2f> from,
                               std::span<const Point2f> to, std::span<const std::uint8_t> inliers,
-                              const MotionModel& model) noexcept
+                              const MotionModel& model, Point2f view) noexcept
 {
     SwayHistory::Step step;
+    step.view = view;
     if (!medianFlow(from, to, inliers, model.centre, -1, 3, step.common))
         return;
     // The noise of the median: the corners' scatter about the fit, over their number.
@@ -111,16 +112,23 @@ bool LivenessCue::swayed(const SwayHistory& history) noexcept
     // Every span of the latest steps: a sway shows in a few frames, a print's drift only over
     // many, and a calm head may have swayed a moment ago and not since.
     Point2f sum{};
+    Point2f view{};
     std::array<Point2f, 4> halves{};
     float variance = 0.f;
     for (int k = 0; k < history.size(); ++k) {
         const SwayHistory::Step& s = history.latest(k);
         sum = {sum.x + s.common.x, sum.y + s.common.y};
+        view = {view.x + s.view.x, view.y + s.view.y};
         for (std::size_t h = 0; h < halves.size(); ++h)
             halves[h] = {halves[h].x + s.halves[h].x, halves[h].y + s.halves[h].y};
         variance += s.variance;
         const float sway2 = dot(sum, sum);
-        const float least = kMinSway + kSwayPerStep * static_cast<float>(k + 1);
+        // The view's motion taken off the flow may be wrong by as much as it is: on a still
+        // camera, a face coming in untracked at the edge biased it by 0.02-0.1 px a frame for a
+        // few frames, and a print's corrected corners swayed together by as much (facegen seeds
+        // 21 and 57's `enter-leave`: a print shown for the rest of the sequence).
+        const float least =
+            kMinSway + kSwayPerStep * static_cast<float>(k + 1) + std::sqrt(dot(view, view));
         if (sway2 < least * least || sway2 < kMinSwayOverNoise * kMinSwayOverNoise * variance)
             continue;
         bool shared = true;

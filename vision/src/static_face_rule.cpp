@@ -112,7 +112,7 @@ void StaticFaceRule::addFlowStep(FaceMotion& m, const FlowStep& step) noexcept
     // few hundredths at best, it cannot be told (a print's own flow then sways as much as a calm
     // head's, by the errors of the view's motion). Such steps say nothing about liveness.
     if (frame_ != viewMovedFrame_)
-        liveness_.addFlowStep(m.sway, step.from, step.to, step.inliers, step.model);
+        liveness_.addFlowStep(m.sway, step.from, step.to, step.inliers, step.model, step.view);
 }
 
 bool StaticFaceRule::movedAsOne(const FlowStep& step) noexcept

@@ -68,6 +68,7 @@ public:
         float survived;
         float shift;
         float viewShift;  ///< how far the camera moved the view at the face (BackgroundMotion)
+        Point2f view{};   ///< the same as a vector (taken off the flow)
     };
     void addFlowStep(FaceMotion& m, const FlowStep& step) noexcept;
 

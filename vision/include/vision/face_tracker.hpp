@@ -6,7 +6,8 @@
 // 360x240) and its motion mask; faces() are then the tracked faces. Per frame, the five steps of
 // fig. 89: 1. every track moves by the flow of its corners; 2. the detector scans where there is
 // motion (or a face was seen recently) and no track is, upright and, for faces that come in
-// tilted, turned by +-tiltScanDegrees, within a window budget (the first frame after construction
+// tilted, turned by +-tiltScanDegrees, within a window budget whose first part goes to the edge
+// bands where faces come into view (the first frame after construction
 // or reset() is scanned whole); 3. a detection keeps the track it overlaps or starts a new one;
 // 4. a track without one is verified on its face warped upright by its roll; 5. a face is shown
 // after confirmFrames detections or verifications in a row and dropped after graceFrames misses

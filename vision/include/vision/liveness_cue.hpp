@@ -11,7 +11,8 @@
 // of that median (the corners' scatter about the fit). The face swayed when, over the last k of
 // its steps (k <= SwayHistory::kSteps), the summed median flow is
 //  - large enough: at least kMinSway + k * kSwayPerStep pixels (the light's slow drift of a
-//    print's corners never reaches it),
+//    print's corners never reaches it), plus the length of the view's summed motion taken off
+//    the flow (an error of the view's motion moves a print's corrected corners as one),
 //  - above the noise: kMinSwayOverNoise times the noise of that sum, and
 //  - shared: each half's summed median moved along it by kMinHalfShare of it at least.
 // The thresholds and what they were measured on are beside the code (liveness_cue.cpp); measure
@@ -34,6 +35,7 @@ public:
         Point2f common{};                 ///< median flow of the face's corners
         std::array<Point2f, 4> halves{};  ///< of those left, right, above, below its centre
         float variance = 0.f;             ///< of the median flow, per axis
+        Point2f view{};  ///< the view's motion at the face, which the flow was corrected by
     };
 
     void clear() noexcept { count_ = 0; }
@@ -53,11 +55,12 @@ public:
     static constexpr int kMaxPairs = 64;  ///< corner pairs per step measured at most
 
     /// One flow step of a face: the pairs `from` -> `to` the motion fit saw, `inliers` its marks
-    /// (1: inlier), `model` the fit, whose centre is the face's centre before the step. Adds the
-    /// step to `history` when at least 3 inliers make it.
+    /// (1: inlier), `model` the fit, whose centre is the face's centre before the step, `view`
+    /// the view's motion at the face that was taken off the flow (BackgroundMotion; zero when
+    /// none). Adds the step to `history` when at least 3 inliers make it.
     void addFlowStep(SwayHistory& history, std::span<const Point2f> from,
                      std::span<const Point2f> to, std::span<const std::uint8_t> inliers,
-                     const MotionModel& model) noexcept;
+                     const MotionModel& model, Point2f view = {}) noexcept;
     /// Whether the face's corners swayed together within its history (the header comment).
     static bool swayed(const SwayHistory& history) noexcept;
     /// Whether its latest step moved the median of its corners by kMinSway at least, further
