@@ -55,6 +55,8 @@ void FaceSearch::reset(bool wholeImage) noexcept
     recent_.fill(RecentArea{});
     coldStart_ = true;
     wholeImage_ = wholeImage;
+    pass_ = 0;
+    lastPass_ = 0;
 }
 
 long FaceSearch::scan(const Frame& frame) noexcept
@@ -79,7 +81,12 @@ long FaceSearch::scan(const Frame& frame) noexcept
     const long budget = options_.detectionWindowBudget;
     budget_ = cold_ || budget <= 0 ? 0 : std::max(1L, budget - frame.spent);
     const int detected = detect(frame, exclude);
+    pass_ += detector_.windowsEvaluated();
     if (done_) {
+        // A cold pass (the whole image) says nothing of what the masked passes cost.
+        if (!cold_ && options_.detectionWindowBudget > 0)
+            lastPass_ = pass_;
+        pass_ = 0;
         coldStart_ = false;
         count_ = std::min(detected, static_cast<int>(hits_.size()));
         for (int d = 0; d < count_; ++d)

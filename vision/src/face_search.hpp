@@ -48,6 +48,9 @@ public:
     bool wasCold() const noexcept { return cold_; }
     /// Windows the last scan() left of the frame's budget (a large number when it has none).
     long windowsLeft() const noexcept;
+    /// Windows the last completed masked pass took over all its frames (0: none completed since
+    /// construction or reset(), or no budget); what a pass of the whole mask costs now.
+    long lastPassWindows() const noexcept { return lastPass_; }
     /// This frame's search mask (Gray8, 255 = scan here) and its integral image.
     ConstImageView mask() const noexcept { return mask_.view(); }
     const IntegralImage& maskIntegral() const noexcept { return maskIntegral_; }
@@ -81,6 +84,8 @@ private:
     bool wholeImage_ = false;  ///< reset(true): the next scan is cold whatever moves
     bool cold_ = false;        ///< the last scan() was cold
     long budget_ = 0;          ///< the last scan()'s budget (0: none)
+    long pass_ = 0;            ///< windows of the pass in progress so far
+    long lastPass_ = 0;        ///< windows of the last completed masked pass (0: none yet)
     std::array<RecentArea, 16> recent_{};
     std::array<Rect, kMaxTracks> excluded_{};
     std::vector<Rect> hits_;  ///< the last completed scan's faces

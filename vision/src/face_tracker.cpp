@@ -40,6 +40,11 @@ constexpr float kReanchorIou = 0.5f;
 /// face's centre (both ways) is of part of that head: the reach of its motion, which the turned
 /// scans look into (TiltedScan's and EntryScan's regions stop at it, their windows do not).
 constexpr float kTiltedHitReach = 0.75f;
+/// EntryScan gets what leaves the whole mask's scan the budget to complete a pass as large as
+/// its last one within this many frames (a quarter of a second at 30 fps; with two faces
+/// moving, facegen seed 13's `enter-leave`, a pass was up to 17400 windows, 7 frames at half
+/// the shipped budget).
+constexpr long kWholePassFrames = 8;
 
 Point2f centreOf(Rect box) noexcept
 {
@@ -122,6 +127,7 @@ struct FaceTracker::Impl {
     void publish() noexcept;
 
     void dropLostTracks() noexcept;
+    long entryBudget() const noexcept;
     long tiltBudget() const noexcept;
     void match(Rect box, float rollHint) noexcept;
     void startTrack(Rect box, float rollHint) noexcept;
@@ -248,15 +254,34 @@ void FaceTracker::Impl::dropLostTracks() noexcept
 void FaceTracker::Impl::detectInSearchMask(const ConstImageView& mask) noexcept
 {
     // Beyond fig. 89: first the edge bands where something moves untracked (a face coming in),
-    // with at most half the budget; the whole mask's scan gets the rest.
+    // with what the whole mask's scan can spare (entryBudget()); the whole mask's scan gets the
+    // rest.
     long spent = 0;
     if (entry.enabled() && motion != nullptr && !search.wasCold())
-        spent = entry.run({image(), mask, *motion, live()}, options.detectionWindowBudget / 2);
+        spent = entry.run({image(), mask, *motion, live()}, entryBudget());
     windows += spent;
     windows += search.scan({image(), mask, motion, live(), frameIndex, spent});
     // Beyond fig. 89: the moving regions no track covers, turned, with what the budget left.
     windows += tilted.run({image(), search.mask(), search.maskIntegral(), live(), search.wasCold()},
                           tiltBudget());
+}
+
+long FaceTracker::Impl::entryBudget() const noexcept
+{
+    // The edge bands take only what the whole mask's scan can spare, at most half the budget:
+    // the budget less what lets a pass of the whole mask, as large as the last one, complete
+    // within kWholePassFrames frames. Nothing until a masked pass has completed since the cold
+    // start (its cost is not known yet). A face coming in while little moves is found first in
+    // its band; when much moves (a panning view: on the demo film the left band moved over its
+    // whole height, one turned look over it took 13 frames of half the budget, and the whole
+    // mask's scan, left the other half, completed a pass of 30000 windows at frame 12 and the
+    // next, of about 90000, not by frame 48, so no face was shown in its first 2 s) the whole
+    // mask's scan, which covers the bands too, keeps the budget (§3, "Detection").
+    const long budget = options.detectionWindowBudget;
+    const long pass = search.lastPassWindows();
+    if (pass <= 0)
+        return 0;
+    return std::clamp(budget - pass / kWholePassFrames, 0L, budget / 2);
 }
 
 long FaceTracker::Impl::tiltBudget() const noexcept
