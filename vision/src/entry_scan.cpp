@@ -35,16 +35,6 @@ constexpr float kBandDepth = 0.25f;
 /// this of the edge).
 constexpr float kEdgeSlack = 0.12f;
 
-/// The rotated image of a w x h image, turned by `degrees`, fits in this box (plus a margin).
-Size rotatedCanvas(Size s, float degrees) noexcept
-{
-    const float c = std::fabs(std::cos(toRadians(degrees)));
-    const float n = std::fabs(std::sin(toRadians(degrees)));
-    const float w = static_cast<float>(s.width) * c + static_cast<float>(s.height) * n;
-    const float h = static_cast<float>(s.width) * n + static_cast<float>(s.height) * c;
-    return {static_cast<int>(std::ceil(w)) + 16, static_cast<int>(std::ceil(h)) + 16};
-}
-
 }  // namespace
 
 EntryScan::EntryScan(const HaarCascade& cascade, const FaceTrackerOptions& options)

@@ -39,16 +39,6 @@ constexpr float kColdMidDegrees = 15.f;
 /// top was in view, unshown, for three frames while its box still reached 3-7 px above it).
 constexpr float kEdgeSlack = 0.12f;
 
-/// The rotated image of a w x h image, turned by `degrees`, fits in this box (plus a margin).
-Size rotatedCanvas(Size s, float degrees) noexcept
-{
-    const float c = std::fabs(std::cos(toRadians(degrees)));
-    const float n = std::fabs(std::sin(toRadians(degrees)));
-    const float w = static_cast<float>(s.width) * c + static_cast<float>(s.height) * n;
-    const float h = static_cast<float>(s.width) * n + static_cast<float>(s.height) * c;
-    return {static_cast<int>(std::ceil(w)) + 16, static_cast<int>(std::ceil(h)) + 16};
-}
-
 FaceDetectorOptions tiltOptions(const FaceTrackerOptions& o)
 {
     FaceDetectorOptions d = o.detector;

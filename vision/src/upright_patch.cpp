@@ -26,6 +26,15 @@ bool warpUpright(const ConstImageView& gray, Point2f centre, float rollDegrees, 
                        static_cast<double>(sourceSide) / patch.height, patch);
 }
 
+Size rotatedCanvas(Size s, float degrees) noexcept
+{
+    const float c = std::fabs(std::cos(toRadians(degrees)));
+    const float n = std::fabs(std::sin(toRadians(degrees)));
+    const float w = static_cast<float>(s.width) * c + static_cast<float>(s.height) * n;
+    const float h = static_cast<float>(s.width) * n + static_cast<float>(s.height) * c;
+    return {static_cast<int>(std::ceil(w)) + 16, static_cast<int>(std::ceil(h)) + 16};
+}
+
 bool warpRotated(const ConstImageView& gray, Point2f centre, float rollDegrees, double unitX,
                  double unitY, ImageView patch) noexcept
 {

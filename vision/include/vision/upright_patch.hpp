@@ -30,4 +30,8 @@ bool warpUpright(const ConstImageView& gray, Point2f centre, float rollDegrees, 
 bool warpRotated(const ConstImageView& gray, Point2f centre, float rollDegrees, double unitX,
                  double unitY, ImageView patch) noexcept;
 
+/// The box a w x h image turned by `degrees` fits in, plus a margin of 16 pixels: the canvas a
+/// whole-image scan turned by that angle (warpRotated at unit scale) needs.
+Size rotatedCanvas(Size s, float degrees) noexcept;
+
 }  // namespace vision
