@@ -12,7 +12,7 @@
 #include "firmware/frame_loop.hpp"
 #include "firmware/log.hpp"
 #include "overlay_loop_config.hpp"
-#include "platform/image_file.hpp"
+#include "preloaded_face_source.hpp"
 #include "test_paths.hpp"
 
 #include <fcntl.h>
@@ -46,40 +46,18 @@ std::string facegen()
 }
 
 /// A facegen sequence's frames, decoded before the loop runs, played forwards then backwards.
-class SequenceSource final : public platform::FrameSource {
-public:
-    explicit SequenceSource(const std::string& dir)
-    {
-        for (int i = 0;; ++i) {
-            char name[32];
-            std::snprintf(name, sizeof name, "/frames/%06d.png", i);
-            if (!fs::exists(dir + name))
-                break;
-            frames_.push_back(platform::loadImageFile(dir + name));
-        }
+std::unique_ptr<PreloadedFaceSource> sequenceSource(const std::string& dir)
+{
+    std::vector<std::string> paths;
+    for (int i = 0;; ++i) {
+        char name[32];
+        std::snprintf(name, sizeof name, "/frames/%06d.png", i);
+        if (!fs::exists(dir + name))
+            break;
+        paths.push_back(dir + name);
     }
-    int frameCount() const { return static_cast<int>(frames_.size()); }
-    const char* description() const noexcept override { return "facegen sequence"; }
-    vision::Size size() const noexcept override
-    {
-        return {frames_[0].view().width, frames_[0].view().height};
-    }
-    vision::PixelFormat format() const noexcept override { return frames_[0].view().format; }
-    platform::SourceStatus next(vision::Frame& frame) noexcept override
-    {
-        const int n = static_cast<int>(frames_.size());
-        const int period = 2 * n - 2;
-        const int k = static_cast<int>(sequence_ % static_cast<std::uint64_t>(period));
-        frame.image = frames_[static_cast<std::size_t>(k < n ? k : period - k)].view();
-        frame.sequence = sequence_++;
-        frame.timestampNs = static_cast<std::int64_t>(frame.sequence) * 33333333;
-        return platform::SourceStatus::Ok;
-    }
-
-private:
-    std::vector<vision::ImageBuffer> frames_;
-    std::uint64_t sequence_ = 0;
-};
+    return std::make_unique<PreloadedFaceSource>(paths, 33333333);
+}
 
 /// "MM-DD" of today (local time), or of a day that is not today.
 std::string monthDay(bool today)
@@ -93,7 +71,7 @@ std::string monthDay(bool today)
 
 struct Mirror {
     Mirror(const firmware::Config& config, const std::string& sequence)
-        : loop(config, std::make_unique<SequenceSource>(sequence),
+        : loop(config, sequenceSource(sequence),
                firmware::makeDisplay(config.display))
     {
         loop.attachConsole(&console);

@@ -7,6 +7,7 @@
 
 #include <cstdint>
 #include <cstdio>
+#include <string>
 #include <vector>
 
 namespace {
@@ -24,7 +25,14 @@ public:
             frames_.push_back(platform::loadImageFile(testing_support::sharedData(name)));
         }
     }
-    const char* description() const noexcept override { return "preloaded FGNet frames"; }
+    /// Other frames (a facegen sequence's), `frameNs` apart.
+    PreloadedFaceSource(const std::vector<std::string>& paths, std::int64_t frameNs)
+        : frameNs_(frameNs)
+    {
+        for (const std::string& path : paths)
+            frames_.push_back(platform::loadImageFile(path));
+    }
+    const char* description() const noexcept override { return "preloaded frames"; }
     vision::Size size() const noexcept override
     {
         return {frames_[0].view().width, frames_[0].view().height};
@@ -38,13 +46,14 @@ public:
         const int index = k < n ? k : period - k;
         frame.image = frames_[static_cast<std::size_t>(index)].view();
         frame.sequence = sequence_++;
-        frame.timestampNs = static_cast<std::int64_t>(frame.sequence) * 40000000;
+        frame.timestampNs = static_cast<std::int64_t>(frame.sequence) * frameNs_;
         return platform::SourceStatus::Ok;
     }
 
 private:
     std::vector<vision::ImageBuffer> frames_;
     std::uint64_t sequence_ = 0;
+    std::int64_t frameNs_ = 40000000;  ///< FGNet's 25 fps
 };
 
 }  // namespace
