@@ -40,15 +40,6 @@ int shownFace(const firmware::FrameLoop& loop)
     return 0;
 }
 
-// "MM-DD" of today, local time (the calendar's dates).
-std::string today()
-{
-    const firmware::CalendarDay d = firmware::localDay(std::time(nullptr));
-    char text[8];
-    std::snprintf(text, sizeof text, "%02d-%02d", d.month, d.day);
-    return text;
-}
-
 class OverlayDaysWeather : public ::testing::Test {
 protected:
     /// A frame loop on the talking face with `config`, the console attached.
@@ -88,8 +79,9 @@ TEST_F(OverlayDaysWeather, OnASpecialDayTheFaceWearsTheDaysOverlayUntilAButtonSa
     firmware::Config config = testConfig("overlay_day");
     // A past day, today's (as a range of one day), and today's again naming an overlay the
     // catalogue lacks (a warning at start-up, left out).
-    config.days.dates = {"2001-01-01 top_hat", today() + ".." + today() + " graduation_cap",
-                         today() + " no_such_hat"};
+    config.days.dates = {"2001-01-01 top_hat",
+                         todayMonthDay() + ".." + todayMonthDay() + " graduation_cap",
+                         todayMonthDay() + " no_such_hat"};
     Mirror mirror(config);
     firmware::FrameLoop& loop = mirror.loop;
     ASSERT_NE(loop.overlaySelection(), nullptr);
@@ -102,7 +94,8 @@ TEST_F(OverlayDaysWeather, OnASpecialDayTheFaceWearsTheDaysOverlayUntilAButtonSa
     EXPECT_EQ(selection.ruleFor(face), firmware::OverlayRule::Day);
 
     const std::string status = mirror.status();
-    EXPECT_NE(status.find("day: graduation_cap (" + today() + ".." + today() + " graduation_cap)"),
+    EXPECT_NE(status.find("day: graduation_cap (" + todayMonthDay() + ".." + todayMonthDay() +
+                          " graduation_cap)"),
               std::string::npos)
         << status;
     EXPECT_NE(status.find("face " + std::to_string(face) + ": graduation_cap alpha 1.00 by day"),

@@ -4,8 +4,11 @@
 // and no special day (on 24 December a face would otherwise start in the Santa hat).
 
 #include "firmware/config.hpp"
+#include "firmware/day_calendar.hpp"
 #include "test_paths.hpp"
 
+#include <cstdio>
+#include <ctime>
 #include <string>
 
 inline firmware::Config overlayLoopConfig(const std::string& name, const std::string& initial)
@@ -22,4 +25,13 @@ inline firmware::Config overlayLoopConfig(const std::string& name, const std::st
     config.state.dir = testing_support::binaryDir() + "/test-output/" + name + "_state";
     config.days.dates.clear();
     return config;
+}
+
+/// "MM-DD" of today, local time (the calendar's and the birthdays' dates).
+inline std::string todayMonthDay()
+{
+    const firmware::CalendarDay d = firmware::localDay(std::time(nullptr));
+    char text[8];
+    std::snprintf(text, sizeof text, "%02d-%02d", d.month, d.day);
+    return text;
 }

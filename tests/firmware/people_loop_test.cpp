@@ -168,15 +168,6 @@ struct Mirror {
     std::string command_;
 };
 
-/// "MM-DD" of today, local time.
-std::string today()
-{
-    const firmware::CalendarDay d = firmware::localDay(std::time(nullptr));
-    char text[8];
-    std::snprintf(text, sizeof text, "%02d-%02d", d.month, d.day);
-    return text;
-}
-
 class PeopleLoop : public ::testing::Test {
 protected:
     void SetUp() override
@@ -293,11 +284,12 @@ TEST_F(PeopleLoop, AKeptPersonIsRecognisedAfterARestartWithTheirOverlayAndBirthd
             << json;
 
         // Her birthday: the person rule (her own overlay) comes first; without one, the birthday.
-        EXPECT_NE(m.run("person birthday anna " + today()).find("anna's birthday is " + today()),
+        EXPECT_NE(m.run("person birthday anna " + todayMonthDay())
+                      .find("anna's birthday is " + todayMonthDay()),
                   std::string::npos)
             << m.console.output();
         m.run("overlay none");  // her own choice now: none; the person rule still wins
-        EXPECT_NE(m.run("person list").find("anna (none, birthday " + today() + ")"),
+        EXPECT_NE(m.run("person list").find("anna (none, birthday " + todayMonthDay() + ")"),
                   std::string::npos)
             << m.console.output();
     }

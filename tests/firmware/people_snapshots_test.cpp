@@ -59,20 +59,20 @@ std::unique_ptr<PreloadedFaceSource> sequenceSource(const std::string& dir)
     return std::make_unique<PreloadedFaceSource>(paths, 33333333);
 }
 
-/// "MM-DD" of today (local time), or of a day that is not today.
+/// "MM-DD" of today (local time), or of a day that is not today (next month's first).
 std::string monthDay(bool today)
 {
-    const firmware::CalendarDay d = firmware::localDay(std::time(nullptr));
+    if (today)
+        return todayMonthDay();
     char text[8];
-    std::snprintf(text, sizeof text, "%02d-%02d", today ? d.month : d.month % 12 + 1,
-                  today ? d.day : 1);
+    std::snprintf(text, sizeof text, "%02d-01",
+                  firmware::localDay(std::time(nullptr)).month % 12 + 1);
     return text;
 }
 
 struct Mirror {
     Mirror(const firmware::Config& config, const std::string& sequence)
-        : loop(config, sequenceSource(sequence),
-               firmware::makeDisplay(config.display))
+        : loop(config, sequenceSource(sequence), firmware::makeDisplay(config.display))
     {
         loop.attachConsole(&console);
     }
@@ -169,11 +169,10 @@ protected:
                          const std::string& faces, int seed)
     {
         const std::string dir = out_ + "/" + name;
-        const std::string command = facegen() + " --scenario " + scenario + " --faces " + faces +
-                                    " --seed " + std::to_string(seed) +
-                                    " --frames 90 --size 640x480 --data " +
-                                    testing_support::sharedData("") + " --out " + dir +
-                                    " >/dev/null";
+        const std::string command =
+            facegen() + " --scenario " + scenario + " --faces " + faces + " --seed " +
+            std::to_string(seed) + " --frames 90 --size 640x480 --data " +
+            testing_support::sharedData("") + " --out " + dir + " >/dev/null";
         EXPECT_EQ(std::system(command.c_str()), 0) << command;
         return dir;
     }
@@ -199,8 +198,7 @@ protected:
         ASSERT_TRUE(m.stepUntil([&] { return m.settled(1); }, 300)) << name << " never settled";
         m.run("person add " + name);
         ASSERT_TRUE(m.stepUntil(
-            [&] { return m.console.output().find("enrolled " + name) != std::string::npos; },
-            300))
+            [&] { return m.console.output().find("enrolled " + name) != std::string::npos; }, 300))
             << m.console.output();
         m.run("overlay " + overlay);
         m.stepUntil([] { return false; }, 3);
