@@ -102,6 +102,93 @@ RollByImageSymmetry::RollByImageSymmetry(const RollByImageSymmetryOptions& optio
             "must be >= 0, rowCueBelowConfidence finite");
 }
 
+void RollByImageSymmetry::boxAverage(const ImageView& big, int s) noexcept
+{
+    // The supersampled warp's s x s blocks averaged down to the patch. The sums are small whole
+    // numbers, exact in float in any order.
+    const int n = n_;
+    const float inv = 1.f / static_cast<float>(s * s);
+    for (int y = 0; y < n; ++y) {
+        float* out = &patch_[static_cast<std::size_t>(y * n)];
+        if (s == 1) {
+            const std::uint8_t* in = big.row(y);
+            for (int x = 0; x < n; ++x)
+                out[x] = static_cast<float>(in[x]);
+            continue;
+        }
+        if (s == 2) {
+            const std::uint8_t* in0 = big.row(2 * y);
+            const std::uint8_t* in1 = big.row(2 * y + 1);
+            for (int x = 0; x < n; ++x)
+                out[x] = static_cast<float>(in0[2 * x] + in0[2 * x + 1] + in1[2 * x] +
+                                            in1[2 * x + 1]) *
+                         inv;
+            continue;
+        }
+        for (int x = 0; x < n; ++x) {
+            int sum = 0;
+            for (int dy = 0; dy < s; ++dy) {
+                const std::uint8_t* in = big.row(y * s + dy) + x * s;
+                for (int dx = 0; dx < s; ++dx)
+                    sum += in[dx];
+            }
+            out[x] = static_cast<float>(sum) * inv;
+        }
+    }
+}
+
+void RollByImageSymmetry::blur121() noexcept
+{
+    // One [1 2 1] pass each way, the border repeated: the comparison is about features, not
+    // pixel noise. The border columns apart, so the row loop has no clamps (the same sums).
+    const int n = n_;
+    for (int y = 0; y < n; ++y) {
+        const float* in = &patch_[static_cast<std::size_t>(y * n)];
+        float* out = &tmp_[static_cast<std::size_t>(y * n)];
+        out[0] = 0.25f * (in[0] + 2.f * in[0] + in[1]);
+        for (int x = 1; x < n - 1; ++x)
+            out[x] = 0.25f * (in[x - 1] + 2.f * in[x] + in[x + 1]);
+        out[n - 1] = 0.25f * (in[n - 2] + 2.f * in[n - 1] + in[n - 1]);
+    }
+    for (int y = 0; y < n; ++y) {
+        const float* up = &tmp_[static_cast<std::size_t>(std::max(y - 1, 0) * n)];
+        const float* mid = &tmp_[static_cast<std::size_t>(y * n)];
+        const float* down = &tmp_[static_cast<std::size_t>(std::min(y + 1, n - 1) * n)];
+        float* out = &patch_[static_cast<std::size_t>(y * n)];
+        for (int x = 0; x < n; ++x)
+            out[x] = 0.25f * (up[x] + 2.f * mid[x] + down[x]);
+    }
+}
+
+void RollByImageSymmetry::gradients() noexcept
+{
+    // Central differences inside the patch, 0 on its border; saturated so that one strong edge
+    // does not outweigh the eyes, nose and mouth.
+    const int n = n_;
+    const bool saturate = options_.gradientSaturation > 0.f;
+    const float invSat = saturate ? 1.f / options_.gradientSaturation : 0.f;
+    std::fill_n(a_.begin(), n, 0.f);
+    std::fill_n(b_.begin(), n, 0.f);
+    std::fill_n(a_.end() - n, n, 0.f);
+    std::fill_n(b_.end() - n, n, 0.f);
+    for (int y = 1; y < n - 1; ++y) {
+        const float* p = &patch_[static_cast<std::size_t>(y * n)];
+        float* gx = &a_[static_cast<std::size_t>(y * n)];
+        float* gy = &b_[static_cast<std::size_t>(y * n)];
+        gx[0] = gy[0] = gx[n - 1] = gy[n - 1] = 0.f;
+        for (int x = 1; x < n - 1; ++x) {
+            gx[x] = p[x + 1] - p[x - 1];
+            gy[x] = p[x + n] - p[x - n];
+        }
+        if (saturate) {
+            for (int x = 1; x < n - 1; ++x) {
+                gx[x] /= 1.f + std::fabs(gx[x]) * invSat;
+                gy[x] /= 1.f + std::fabs(gy[x]) * invSat;
+            }
+        }
+    }
+}
+
 bool RollByImageSymmetry::prepare(const ConstImageView& gray, Point2f centre, float boxSize,
                                   float rollDegrees) noexcept
 {
@@ -117,63 +204,12 @@ bool RollByImageSymmetry::prepare(const ConstImageView& gray, Point2f centre, fl
     if (!warpUpright(gray, centre, rollDegrees, side, big))
         return false;
 
-    // Box-average the supersampled warp down to the patch.
-    const float inv = 1.f / static_cast<float>(s * s);
-    for (int y = 0; y < n; ++y) {
-        float* out = &patch_[static_cast<std::size_t>(y * n)];
-        for (int x = 0; x < n; ++x)
-            out[x] = 0.f;
-        for (int dy = 0; dy < s; ++dy) {
-            const std::uint8_t* in = big.row(y * s + dy);
-            for (int x = 0; x < n; ++x) {
-                int sum = 0;
-                for (int dx = 0; dx < s; ++dx)
-                    sum += in[x * s + dx];
-                out[x] += static_cast<float>(sum);
-            }
-        }
-        for (int x = 0; x < n; ++x)
-            out[x] *= inv;
-    }
-
-    // [1 2 1] passes, border repeated: the comparison is about features, not pixel noise.
-    for (int pass = 0; pass < options_.blurPasses; ++pass) {
-        for (int y = 0; y < n; ++y) {
-            const float* in = &patch_[static_cast<std::size_t>(y * n)];
-            float* out = &tmp_[static_cast<std::size_t>(y * n)];
-            for (int x = 0; x < n; ++x)
-                out[x] =
-                    0.25f * (in[std::max(x - 1, 0)] + 2.f * in[x] + in[std::min(x + 1, n - 1)]);
-        }
-        for (int y = 0; y < n; ++y) {
-            const float* up = &tmp_[static_cast<std::size_t>(std::max(y - 1, 0) * n)];
-            const float* mid = &tmp_[static_cast<std::size_t>(y * n)];
-            const float* down = &tmp_[static_cast<std::size_t>(std::min(y + 1, n - 1) * n)];
-            float* out = &patch_[static_cast<std::size_t>(y * n)];
-            for (int x = 0; x < n; ++x)
-                out[x] = 0.25f * (up[x] + 2.f * mid[x] + down[x]);
-        }
-    }
+    boxAverage(big, s);
+    for (int pass = 0; pass < options_.blurPasses; ++pass)
+        blur121();
 
     if (options_.feature == SymmetryFeature::Gradient) {
-        std::fill(a_.begin(), a_.end(), 0.f);
-        std::fill(b_.begin(), b_.end(), 0.f);
-        for (int y = 1; y < n - 1; ++y) {
-            const float* p = &patch_[static_cast<std::size_t>(y * n)];
-            float* gx = &a_[static_cast<std::size_t>(y * n)];
-            float* gy = &b_[static_cast<std::size_t>(y * n)];
-            for (int x = 1; x < n - 1; ++x) {
-                gx[x] = p[x + 1] - p[x - 1];
-                gy[x] = p[x + n] - p[x - n];
-            }
-        }
-        if (options_.gradientSaturation > 0.f) {
-            const float invSat = 1.f / options_.gradientSaturation;
-            for (std::size_t i = 0; i < a_.size(); ++i) {
-                a_[i] /= 1.f + std::fabs(a_[i]) * invSat;
-                b_[i] /= 1.f + std::fabs(b_[i]) * invSat;
-            }
-        }
+        gradients();
     } else {
         // Intensities about the mean of the compared region (centred axis).
         const int y0 = std::clamp(static_cast<int>(std::lround(options_.regionTop * n)), 0, n - 1);

@@ -85,6 +85,11 @@ private:
     /// Best asymmetry over the axis offsets of the prepared planes: half-pixel steps, and when
     /// `continuous` a golden-section search between the best step's neighbours.
     float bestOverOffsets(bool continuous) noexcept;
+    /// prepare's steps: the supersampled warp averaged down to patch_ (s x s blocks), one
+    /// [1 2 1] pass each way over patch_, and the saturated gradient planes a_, b_ from it.
+    void boxAverage(const ImageView& big, int s) noexcept;
+    void blur121() noexcept;
+    void gradients() noexcept;
     /// Normalised asymmetry of the prepared planes about the axis at a2 / 2 (patch pixels).
     float asymmetryAbout(float a2) const noexcept;
     /// Gradient feature: how much the prepared vertical derivatives add up along the rows of the
