@@ -296,3 +296,32 @@ TEST(UprightPatch, NoHeapAllocation)
 }
 
 }  // namespace
+
+#if defined(__aarch64__)
+#include "upright_patch_kernels.hpp"
+
+TEST(UprightPatchKernels, NeonRowsAreTheScalarRowsBitForBit)
+{
+    // In-image rows at every kind of step (both signs, steeper than one pixel, sub-pixel), of
+    // widths around the NEON kernel's eight samples, against the scalar reference.
+    const ImageBuffer img = noiseImage(200, 150, 11);
+    const ConstImageView g = img.view();
+    std::mt19937 rng(5);
+    std::uniform_int_distribution<std::int32_t> step(-3 << 16, 3 << 16);
+    std::vector<std::uint8_t> scalar(64), neon(64);
+    for (int trial = 0; trial < 2000; ++trial) {
+        const int width = 1 + trial % 40;
+        const std::int32_t sx0 = step(rng), sy0 = step(rng);
+        const std::int32_t dx = trial % 5 == 0 ? (1 << 16) : sx0 / 8;
+        const std::int32_t dy = trial % 7 == 0 ? 0 : sy0 / 8;
+        // Start where the whole row and its right and lower neighbours stay inside.
+        const std::int32_t sx = (100 << 16) - dx * (width / 2) + (sx0 & 0xffff);
+        const std::int32_t sy = (75 << 16) - dy * (width / 2) + (sy0 & 0xffff);
+        upright_detail::warpRowInsideScalar(g.data, g.stride, sx, sy, dx, dy, 0, width,
+                                            scalar.data());
+        upright_detail::warpRowInsideNeon(g.data, g.stride, sx, sy, dx, dy, width, neon.data());
+        ASSERT_TRUE(std::equal(scalar.begin(), scalar.begin() + width, neon.begin()))
+            << "trial " << trial << " width " << width;
+    }
+}
+#endif

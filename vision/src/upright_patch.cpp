@@ -2,6 +2,7 @@
 
 #include "vision/upright_patch.hpp"
 
+#include "upright_patch_kernels.hpp"
 #include "vision/geometry.hpp"
 
 #include <algorithm>
@@ -12,8 +13,90 @@ namespace vision {
 
 namespace {
 
-constexpr int kPosShift = 16;  // source positions in Q16
+using upright_detail::kPosShift;  // source positions in Q16
 constexpr float kLimit = 16384.0f;
+
+/// One in-image row (upright_patch_kernels.hpp): NEON where there is NEON and the image's
+/// offsets fit its 32-bit lanes.
+void warpRowInside(const ConstImageView& gray, std::int32_t sx, std::int32_t sy,
+                   std::int32_t stepX, std::int32_t stepY, int width, std::uint8_t* out) noexcept
+{
+#if defined(__aarch64__)
+    if (gray.stride * static_cast<std::ptrdiff_t>(gray.height) < (std::ptrdiff_t{1} << 31)) {
+        upright_detail::warpRowInsideNeon(gray.data, gray.stride, sx, sy, stepX, stepY, width,
+                                          out);
+        return;
+    }
+#endif
+    upright_detail::warpRowInsideScalar(gray.data, gray.stride, sx, sy, stepX, stepY, 0, width,
+                                        out);
+}
+
+/// Samples u0 <= u < u1 of a row (sample u at (sx + u stepX, sy + u stepY), Q16), each of its
+/// four pixels clamped to the image: the border repeated.
+void warpRowClamped(const ConstImageView& gray, std::int32_t sx, std::int32_t sy,
+                    std::int32_t stepX, std::int32_t stepY, int u0, int u1,
+                    std::uint8_t* out) noexcept
+{
+    const int maxX = gray.width - 1;
+    const int maxY = gray.height - 1;
+    sx += u0 * stepX;
+    sy += u0 * stepY;
+    for (int u = u0; u < u1; ++u, sx += stepX, sy += stepY) {
+        const int ix = sx >> kPosShift;  // floor (arithmetic shift)
+        const int iy = sy >> kPosShift;
+        const auto fx = static_cast<std::uint32_t>((sx >> (kPosShift - 8)) & 255);
+        const auto fy = static_cast<std::uint32_t>((sy >> (kPosShift - 8)) & 255);
+        const int xa = std::clamp(ix, 0, maxX);
+        const int xb = std::clamp(ix + 1, 0, maxX);
+        const std::uint8_t* ra = gray.row(std::clamp(iy, 0, maxY));
+        const std::uint8_t* rb = gray.row(std::clamp(iy + 1, 0, maxY));
+        const std::uint32_t top = ra[xa] * (256 - fx) + ra[xb] * fx;
+        const std::uint32_t bottom = rb[xa] * (256 - fx) + rb[xb] * fx;
+        out[u] = static_cast<std::uint8_t>((top * (256 - fy) + bottom * fy + 32768) >> 16);
+    }
+}
+
+/// The run [first, end) of a row's samples for which `inside(u)` holds (0 <= position >> 16 <
+/// max on both axes; the intersection of four half-lines in u, so one run): solved in doubles,
+/// then settled exactly by `inside` at its ends. An empty run gives first == end.
+template <class Inside>
+void insideRun(std::int32_t sx, std::int32_t sy, std::int32_t stepX, std::int32_t stepY, int maxX,
+               int maxY, int width, const Inside& inside, int& first, int& end) noexcept
+{
+    double lo = 0.0, hi = width;
+    const auto clip = [&lo, &hi](double start, double step, double limit) {
+        // 0 <= start + u step < limit.
+        if (step == 0.0) {
+            if (start < 0.0 || start >= limit)
+                hi = lo;
+            return;
+        }
+        const double a = -start / step, b = (limit - start) / step;
+        lo = std::max(lo, std::min(a, b));
+        hi = std::min(hi, std::max(a, b));
+    };
+    clip(sx, stepX, static_cast<double>(maxX) * (1 << kPosShift));
+    clip(sy, stepY, static_cast<double>(maxY) * (1 << kPosShift));
+    if (!(hi > lo)) {
+        first = end = 0;
+        return;
+    }
+    first = std::clamp(static_cast<int>(std::ceil(lo)), 0, width);
+    end = std::clamp(static_cast<int>(std::ceil(hi)), first, width);
+    while (first < end && !inside(first))
+        ++first;
+    while (end > first && !inside(end - 1))
+        --end;
+    if (first == end) {
+        first = end = 0;
+        return;
+    }
+    while (first > 0 && inside(first - 1))
+        --first;
+    while (end < width && inside(end))
+        ++end;
+}
 
 }  // namespace
 
@@ -72,45 +155,31 @@ bool warpRotated(const ConstImageView& gray, Point2f centre, float rollDegrees, 
     const std::int32_t stepYu = q(dyu);
     const int maxX = gray.width - 1;
     const int maxY = gray.height - 1;
-    // A row whose samples and their right and lower neighbours are all inside the image needs
-    // no clamping (a face in view: the roll search warps it some thirty times). A row's
-    // positions are linear in u, so its two ends bound them.
+    // Samples whose pixels and their right and lower neighbours are all inside the image need no
+    // clamping (a face in view: the roll search warps it some forty times a frame; a face at the
+    // image's edge has most of each row inside).
     const auto within = [](std::int64_t p, int max) {
         return (p >> kPosShift) >= 0 && (p >> kPosShift) < max;
     };
-    const std::int64_t lastU = patch.width - 1;
     for (int v = 0; v < patch.height; ++v) {
         // Row starts from the exact start, so rounding does not accumulate down the patch.
         std::int32_t sx = q(x0 + dxv * v);
         std::int32_t sy = q(y0 + dyv * v);
         std::uint8_t* out = patch.row(v);
-        if (within(sx, maxX) && within(sy, maxY) && within(sx + lastU * stepXu, maxX) &&
-            within(sy + lastU * stepYu, maxY)) {
-            // The same sums as below, without the clamps.
-            for (int u = 0; u < patch.width; ++u, sx += stepXu, sy += stepYu) {
-                const auto fx = static_cast<std::uint32_t>((sx >> (kPosShift - 8)) & 255);
-                const auto fy = static_cast<std::uint32_t>((sy >> (kPosShift - 8)) & 255);
-                const std::uint8_t* ra = gray.row(sy >> kPosShift) + (sx >> kPosShift);
-                const std::uint8_t* rb = ra + gray.stride;
-                const std::uint32_t top = ra[0] * (256 - fx) + ra[1] * fx;
-                const std::uint32_t bottom = rb[0] * (256 - fx) + rb[1] * fx;
-                out[u] = static_cast<std::uint8_t>((top * (256 - fy) + bottom * fy + 32768) >> 16);
-            }
-            continue;
-        }
-        for (int u = 0; u < patch.width; ++u, sx += stepXu, sy += stepYu) {
-            const int ix = sx >> kPosShift;  // floor (arithmetic shift)
-            const int iy = sy >> kPosShift;
-            const auto fx = static_cast<std::uint32_t>((sx >> (kPosShift - 8)) & 255);
-            const auto fy = static_cast<std::uint32_t>((sy >> (kPosShift - 8)) & 255);
-            const int xa = std::clamp(ix, 0, maxX);
-            const int xb = std::clamp(ix + 1, 0, maxX);
-            const std::uint8_t* ra = gray.row(std::clamp(iy, 0, maxY));
-            const std::uint8_t* rb = gray.row(std::clamp(iy + 1, 0, maxY));
-            const std::uint32_t top = ra[xa] * (256 - fx) + ra[xb] * fx;
-            const std::uint32_t bottom = rb[xa] * (256 - fx) + rb[xb] * fx;
-            out[u] = static_cast<std::uint8_t>((top * (256 - fy) + bottom * fy + 32768) >> 16);
-        }
+        // The samples whose four pixels are all inside form one run (the positions are linear
+        // in u): blended there without clamps, and with them either side of it.
+        const auto inside = [&](int u) {
+            return within(sx + std::int64_t{u} * stepXu, maxX) &&
+                   within(sy + std::int64_t{u} * stepYu, maxY);
+        };
+        int first = 0, end = patch.width;
+        if (!(inside(0) && inside(patch.width - 1)))
+            insideRun(sx, sy, stepXu, stepYu, maxX, maxY, patch.width, inside, first, end);
+        warpRowClamped(gray, sx, sy, stepXu, stepYu, 0, first, out);
+        if (first < end)
+            warpRowInside(gray, sx + first * stepXu, sy + first * stepYu, stepXu, stepYu,
+                          end - first, out + first);
+        warpRowClamped(gray, sx, sy, stepXu, stepYu, end, patch.width, out);
     }
     return true;
 }
