@@ -202,6 +202,10 @@ QuadFit fitQuad(const ConstImageView& rgb, const Quad& seed, const QuadJudge& ju
         if (carryHiddenEdge(*judge.measured, judge.frame, f.refinement)) {
             f.raw = canonicalOrder(f.refinement.quad);
             f.carried = k;
+        } else if (judge.predicted && predictHiddenEdge(*judge.predicted, judge.predictedGuide,
+                                                        guide > 0.f, judge.frame, f.refinement)) {
+            // Not marked as carried: the carried edge's tests (fitCard) are the similarity's.
+            f.raw = canonicalOrder(f.refinement.quad);
         }
     }
     // Plausibility: the beyond-the-dissertation lost-track test.

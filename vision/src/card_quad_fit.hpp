@@ -40,6 +40,10 @@ struct QuadJudge {
     /// While tracking, the last quad measured on all four edges (null otherwise): an edge without
     /// evidence moves with the card from there (carryHiddenEdge)
     const Quad* measured = nullptr;
+    /// While tracking, where the shape model expects the card (null otherwise): a hidden edge
+    /// the similarity cannot carry keeps its neighbours' lengths from there (predictHiddenEdge)
+    const Quad* predicted = nullptr;
+    float predictedGuide = 0.f;  ///< how far the card's edges may be from `predicted`
 };
 
 struct QuadFit {

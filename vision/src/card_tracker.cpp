@@ -181,6 +181,8 @@ QuadFit CardTracker::State::fitCard(const ConstImageView& rgb, const Quad* coars
     judge.goodArea = shape.goodArea();
     judge.goodAspect = shape.goodAspect();
     judge.measured = tracking ? shape.lastMeasured() : nullptr;
+    judge.predicted = tracking && haveShape ? &predicted : nullptr;
+    judge.predictedGuide = shape.edgeGuide(missed);
     QuadFit best;
     if (coarse)
         best = fitQuad(rgb, *coarse, judge);
