@@ -44,6 +44,8 @@ struct QuadJudge {
     /// the similarity cannot carry keeps its neighbours' lengths from there (predictHiddenEdge)
     const Quad* predicted = nullptr;
     float predictedGuide = 0.f;  ///< how far the card's edges may be from `predicted`
+    /// While tracking, the last frame's edge without evidence (two corners), or null
+    const Point2f* hidden = nullptr;
 };
 
 struct QuadFit {

@@ -24,6 +24,15 @@ public:
                bool measured) noexcept;
 
     bool haveLast() const noexcept { return haveLast_; }
+    /// The last tracked frame's edge without image evidence (its two corners), or null: a hand
+    /// was over it.
+    void setHidden(bool hidden, Point2f a, Point2f b) noexcept
+    {
+        hidden_ = hidden;
+        hiddenEdge_[0] = a;
+        hiddenEdge_[1] = b;
+    }
+    const Point2f* lastHidden() const noexcept { return hidden_ ? hiddenEdge_ : nullptr; }
     /// The last quad with all four edges fitted to the image (null: none since the reset): the
     /// card's measured shape that a hidden edge is carried from (carryHiddenEdge).
     const Quad* lastMeasured() const noexcept { return haveMeasured_ ? &measured_ : nullptr; }
@@ -54,6 +63,8 @@ private:
     bool haveGood_ = false;
     Quad measured_{};
     bool haveMeasured_ = false;
+    bool hidden_ = false;
+    Point2f hiddenEdge_[2] = {};
     float goodArea_ = 0.f;
     float goodAspect_ = 1.f;
 };

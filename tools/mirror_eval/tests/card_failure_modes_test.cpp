@@ -142,6 +142,20 @@ TEST(CardFailureModes, AnEdgeUnderAHandWhileTheCardTurnsInDepthKeepsItsNeighbour
     EXPECT_EQ(run.metrics.falseTrackingFrames, 0);
 }
 
+// A dark hand of nearly the card's colour over its right corner while the card turns in depth:
+// the right edge was hidden for a few frames, then both passes fitted the hand's outline (a line
+// across the card, 17 degrees off the card's edge) as that edge, a corner 45-50 px off for 18
+// frames. A line for an edge hidden in the last frame, far from where its neighbours' lengths put
+// it and turned from it by more than the card turns in a frame, is the outline, not the edge.
+TEST(CardFailureModes, AHandsOutlineIsNotTakenForAnEdgeHiddenInTheLastFrame)
+{
+    const TrackerRun run = runScenario("hard", 3001, 40, 75, 150);
+    EXPECT_EQ(run.metrics.lostFrames, 0) << misses(run);
+    EXPECT_LE(run.metrics.maxErrPx, 20.0) << misses(run);
+    EXPECT_LE(run.metrics.meanErrPx, 2.5) << misses(run);
+    EXPECT_EQ(run.metrics.falseTrackingFrames, 0);
+}
+
 // A hand over the card's bottom-right corner while its top-right corner was out of view: the
 // right edge, running out of view, was not carried (an edge at the border is unknowable), so it
 // kept the wide pass's line, the hand's outline (70-85 px off from frame 121). An edge with an
