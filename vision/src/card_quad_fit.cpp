@@ -10,6 +10,10 @@ namespace vision {
 
 namespace {
 
+/// Sine of the turn (about 11.5 degrees) beyond which a line fitted for an edge hidden in the last
+/// frame is an outline across the card rather than the card's edge coming back.
+constexpr float kHiddenOutlineTurn = 0.2f;
+
 float edgeLength(const Quad& q, int i) noexcept
 {
     const Point2f a = q[i], b = q[(i + 1) % 4];
@@ -110,6 +114,43 @@ const char* unlikeTheCard(QuadFit& f, const QuadJudge& j) noexcept
     return nullptr;
 }
 
+/// §2 future work (lost-track detection): an edge hidden in the last frame (judge.hidden) and
+/// fitted now far from where its neighbours' last lengths put it (predictHiddenEdge), turned from
+/// there by more than the card turns in a frame, is an occluder's outline across the card (a hand
+/// of nearly the card's colour), not the card's edge coming back, which comes back near parallel
+/// to where it is expected. Then `r` has that edge placed by predictHiddenEdge, not fitted.
+bool hiddenEdgeOutline(const QuadJudge& judge, EdgeRefinement& r) noexcept
+{
+    auto dist = [](Point2f p, Point2f q) { return std::hypot(p.x - q.x, p.y - q.y); };
+    const Point2f a = judge.hidden[0], b = judge.hidden[1];
+    int j = 0;  // the edge that was hidden: its corners nearest the hidden one's
+    float nearest = 1e30f;
+    for (int i = 0; i < 4; ++i) {
+        const Point2f p = r.quad[i], q = r.quad[(i + 1) % 4];
+        const float d = std::min(dist(p, a) + dist(q, b), dist(p, b) + dist(q, a));
+        if (d < nearest) {
+            nearest = d;
+            j = i;
+        }
+    }
+    EdgeRefinement placed = r;
+    placed.fitted[j] = false;
+    placed.edgesFitted = 3;
+    if (!predictHiddenEdge(*judge.predicted, judge.predictedGuide, true, judge.frame, placed))
+        return false;
+    const Point2f p0 = r.quad[j], p1 = r.quad[(j + 1) % 4];
+    const Point2f q0 = placed.quad[j], q1 = placed.quad[(j + 1) % 4];
+    if (std::max(dist(p0, q0), dist(p1, q1)) <= judge.predictedGuide)
+        return false;
+    const float ux = p1.x - p0.x, uy = p1.y - p0.y, vx = q1.x - q0.x, vy = q1.y - q0.y;
+    const float turn =
+        std::fabs(ux * vy - uy * vx) / std::max(std::hypot(ux, uy) * std::hypot(vx, vy), 1e-6f);
+    if (turn <= kHiddenOutlineTurn)
+        return false;
+    r = placed;
+    return true;
+}
+
 }  // namespace
 
 float quadArea(const Quad& q) noexcept
@@ -195,6 +236,9 @@ QuadFit fitQuad(const ConstImageView& rgb, const Quad& seed, const QuadJudge& ju
                 unfoundEdge = true;
         }
     }
+    if (judge.hidden && judge.predicted && f.refinement.edgesFitted == 4 &&
+        hiddenEdgeOutline(judge, f.refinement))
+        f.raw = canonicalOrder(f.refinement.quad);
     if (judge.measured && f.refinement.edgesFitted == 3) {
         int k = 0;
         while (f.refinement.fitted[k])
@@ -202,6 +246,10 @@ QuadFit fitQuad(const ConstImageView& rgb, const Quad& seed, const QuadJudge& ju
         if (carryHiddenEdge(*judge.measured, judge.frame, f.refinement)) {
             f.raw = canonicalOrder(f.refinement.quad);
             f.carried = k;
+        } else if (judge.predicted && predictHiddenEdge(*judge.predicted, judge.predictedGuide,
+                                                        guide > 0.f, judge.frame, f.refinement)) {
+            // Not marked as carried: the carried edge's tests (fitCard) are the similarity's.
+            f.raw = canonicalOrder(f.refinement.quad);
         }
     }
     // Plausibility: the beyond-the-dissertation lost-track test.

@@ -40,6 +40,12 @@ struct QuadJudge {
     /// While tracking, the last quad measured on all four edges (null otherwise): an edge without
     /// evidence moves with the card from there (carryHiddenEdge)
     const Quad* measured = nullptr;
+    /// While tracking, where the shape model expects the card (null otherwise): a hidden edge
+    /// the similarity cannot carry keeps its neighbours' lengths from there (predictHiddenEdge)
+    const Quad* predicted = nullptr;
+    float predictedGuide = 0.f;  ///< how far the card's edges may be from `predicted`
+    /// While tracking, the last frame's edge without evidence (two corners), or null
+    const Point2f* hidden = nullptr;
 };
 
 struct QuadFit {

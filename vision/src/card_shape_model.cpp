@@ -210,6 +210,55 @@ bool carryHiddenEdge(const Quad& reference, Size frame, EdgeRefinement& r) noexc
     return true;
 }
 
+bool predictHiddenEdge(const Quad& predicted, float guide, bool fromPrediction, Size frame,
+                       EdgeRefinement& r) noexcept
+{
+    if (r.edgesFitted != 3)
+        return false;
+    int k = 0;
+    while (r.fitted[k])
+        ++k;
+    const int s = bestShiftCentred(r.quad, predicted);  // r.quad[(i + s) % 4] is predicted[i]
+    auto expected = [&](int corner) { return predicted[(corner - s + 8) % 4]; };
+    // The edge's kept line, or where it was, reaches the border: the card leaves the view there,
+    // no hand hides it.
+    if (!wellInView(r.quad[k], frame) || !wellInView(r.quad[(k + 1) % 4], frame) ||
+        !wellInView(expected(k), frame) || !wellInView(expected((k + 1) % 4), frame))
+        return false;
+    Point2f a, b;  // the measured corners k + 2 and k + 3
+    if (!intersectLines(r.lines[(k + 1) % 4], r.lines[(k + 2) % 4], a) ||
+        !intersectLines(r.lines[(k + 2) % 4], r.lines[(k + 3) % 4], b))
+        return false;
+    // Each hidden corner on its fitted neighbour line, as far from the measured corner as last.
+    auto along = [&](const Line2f& line, Point2f from, Point2f oldFrom, Point2f oldTo) {
+        float dx = -line.ny, dy = line.nx;
+        const float ox = oldTo.x - oldFrom.x, oy = oldTo.y - oldFrom.y;
+        if (dx * ox + dy * oy < 0.f) {
+            dx = -dx;
+            dy = -dy;
+        }
+        const float len = std::hypot(ox, oy);
+        return Point2f{from.x + dx * len, from.y + dy * len};
+    };
+    // A hand over a corner cuts the colour's hull short there: a hull's corner nearer its
+    // measured neighbour than the card's was. One no nearer (or farther) is the card's.
+    auto distance = [](Point2f p, Point2f q) { return std::hypot(p.x - q.x, p.y - q.y); };
+    auto lengthThen = [&](int from, int to) { return distance(expected(from), expected(to)); };
+    const float cut1 = lengthThen((k + 2) % 4, (k + 1) % 4) - distance(r.quad[(k + 1) % 4], a);
+    const float cut0 = lengthThen((k + 3) % 4, k) - distance(r.quad[k], b);
+    if (!fromPrediction && (std::max(cut0, cut1) <= guide || std::min(cut0, cut1) < -guide))
+        return false;
+    const Point2f p1 = along(r.lines[(k + 1) % 4], a, expected((k + 2) % 4), expected((k + 1) % 4));
+    const Point2f p0 = along(r.lines[(k + 3) % 4], b, expected((k + 3) % 4), expected(k));
+    Line2f hidden;
+    if (!wellInView(p0, frame) || !wellInView(p1, frame) || !lineThrough(p0, p1, hidden))
+        return false;
+    r.lines[k] = hidden;
+    r.quad[k] = p0;
+    r.quad[(k + 1) % 4] = p1;
+    return true;
+}
+
 float carriedEdgeSlack(const EdgeRefinement& r, int k) noexcept
 {
     auto length = [&](int i) {

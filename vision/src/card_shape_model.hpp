@@ -24,6 +24,15 @@ public:
                bool measured) noexcept;
 
     bool haveLast() const noexcept { return haveLast_; }
+    /// The last tracked frame's edge without image evidence (its two corners), or null: a hand
+    /// was over it.
+    void setHidden(bool hidden, Point2f a, Point2f b) noexcept
+    {
+        hidden_ = hidden;
+        hiddenEdge_[0] = a;
+        hiddenEdge_[1] = b;
+    }
+    const Point2f* lastHidden() const noexcept { return hidden_ ? hiddenEdge_ : nullptr; }
     /// The last quad with all four edges fitted to the image (null: none since the reset): the
     /// card's measured shape that a hidden edge is carried from (carryHiddenEdge).
     const Quad* lastMeasured() const noexcept { return haveMeasured_ ? &measured_ : nullptr; }
@@ -54,6 +63,8 @@ private:
     bool haveGood_ = false;
     Quad measured_{};
     bool haveMeasured_ = false;
+    bool hidden_ = false;
+    Point2f hiddenEdge_[2] = {};
     float goodArea_ = 0.f;
     float goodAspect_ = 1.f;
 };
@@ -72,6 +83,19 @@ float quadDistance(const Quad& a, const Quad& b) noexcept;
 /// view is still the card's where it is in view (kept there, it would follow a hand's outline).
 bool carryHiddenEdge(const Quad& reference, Size frame, EdgeRefinement& r) noexcept;
 
+/// The same edge when the similarity cannot carry it (the card turned in depth: its fitted
+/// neighbours turned otherwise than its measured edge), §2 future work (recovery from the shape
+/// model): each hidden corner on its fitted neighbour line, as far from the measured corner at
+/// the neighbour's other end as in `predicted` (the shape model's quad for this frame: the last
+/// one, moved on as it last moved). A neighbour's length changes little from frame to frame as
+/// the card turns, where the similarity's turn or the last frame's place does not. Only for a
+/// hidden edge well in view, then and now (an edge at the border is the card leaving the view).
+/// `fromPrediction`: `r` was refined from `predicted` (the edge's kept line is the last frame's,
+/// standing still); otherwise from the colour's quad, whose kept line is the hull's, replaced only
+/// where a hand cut the hull short (a hull's corner nearer its measured neighbour than `guide`
+/// shorter than the card's was, none farther). False (r unchanged) otherwise.
+bool predictHiddenEdge(const Quad& predicted, float guide, bool fromPrediction, Size frame,
+                       EdgeRefinement& r) noexcept;
 /// How far a corner of edge k carried by carryHiddenEdge may be from the card's: the carry takes
 /// the card as turning in the image within about 3 degrees of its measured edge, so a corner at
 /// the far end of a neighbour edge may be off by that turn over the neighbour's length, and by as

@@ -181,6 +181,9 @@ QuadFit CardTracker::State::fitCard(const ConstImageView& rgb, const Quad* coars
     judge.goodArea = shape.goodArea();
     judge.goodAspect = shape.goodAspect();
     judge.measured = tracking ? shape.lastMeasured() : nullptr;
+    judge.predicted = tracking && haveShape ? &predicted : nullptr;
+    judge.predictedGuide = shape.edgeGuide(missed);
+    judge.hidden = tracking && haveShape ? shape.lastHidden() : nullptr;
     QuadFit best;
     if (coarse)
         best = fitQuad(rgb, *coarse, judge);
@@ -220,6 +223,12 @@ void CardTracker::State::remember(const QuadFit& fit, unsigned missed) noexcept
     for (const Point2f& p : fit.raw)
         whole = whole && !nearBorder(p, size);
     shape.track(fit.raw, fit.area, fit.aspect, missed, whole, fit.refinement.edgesFitted == 4);
+    // The edge without evidence (under a hand), for the next frame's fit (hiddenEdgeOutline).
+    int k = 0;
+    while (k < 3 && fit.refinement.fitted[k])
+        ++k;
+    shape.setHidden(fit.refinement.edgesFitted == 3, fit.refinement.quad[k],
+                    fit.refinement.quad[(k + 1) % 4]);
 }
 
 // The corners are filtered by a One-Euro filter per coordinate (options: rest cutoff, speed gain,

@@ -129,6 +129,33 @@ TEST(CardFailureModes, AColoursHullCutByAHandIsNotTheCardFarFromWhereItIsExpecte
     EXPECT_EQ(run.metrics.falseTrackingFrames, 0);
 }
 
+// The same hand while the card turns in depth: the similarity cannot carry the hidden edge (the
+// fitted neighbours turn otherwise than the measured edge), and the fit from the predicted quad
+// kept the prediction's line for it, the last frame's (no velocity while an edge is hidden): it
+// stood still while the card moved on, a corner 16-33 px off for three frames. The hidden corners
+// lie on their fitted neighbour lines as far from the measured corners as the last frame's now.
+TEST(CardFailureModes, AnEdgeUnderAHandWhileTheCardTurnsInDepthKeepsItsNeighboursLengths)
+{
+    const TrackerRun run = runScenario("hard", 6003, 38, 70, 150);
+    EXPECT_EQ(run.metrics.lostFrames, 0) << misses(run);
+    EXPECT_LE(run.metrics.maxErrPx, 10.0) << misses(run);
+    EXPECT_EQ(run.metrics.falseTrackingFrames, 0);
+}
+
+// A dark hand of nearly the card's colour over its right corner while the card turns in depth:
+// the right edge was hidden for a few frames, then both passes fitted the hand's outline (a line
+// across the card, 17 degrees off the card's edge) as that edge, a corner 45-50 px off for 18
+// frames. A line for an edge hidden in the last frame, far from where its neighbours' lengths put
+// it and turned from it by more than the card turns in a frame, is the outline, not the edge.
+TEST(CardFailureModes, AHandsOutlineIsNotTakenForAnEdgeHiddenInTheLastFrame)
+{
+    const TrackerRun run = runScenario("hard", 3001, 40, 75, 150);
+    EXPECT_EQ(run.metrics.lostFrames, 0) << misses(run);
+    EXPECT_LE(run.metrics.maxErrPx, 20.0) << misses(run);
+    EXPECT_LE(run.metrics.meanErrPx, 2.5) << misses(run);
+    EXPECT_EQ(run.metrics.falseTrackingFrames, 0);
+}
+
 // A hand over the card's bottom-right corner while its top-right corner was out of view: the
 // right edge, running out of view, was not carried (an edge at the border is unknowable), so it
 // kept the wide pass's line, the hand's outline (70-85 px off from frame 121). An edge with an
