@@ -202,6 +202,18 @@ TEST(FaceFailureModes, ATiltedHitOnPartOfATrackedHeadIsNotANewFace)
     EXPECT_LE(s.missed, 1);
 }
 
+// A 52 px upright hit between two shown 82 px heads (its centre 0.70 and 0.66 of their size from
+// theirs) started a track: its patch held what the two heads show of a face, so first-hit
+// verification passed, their corners moved it, and it was shown, then held by its corners for the
+// occluded grace (34 false faces, 107-140). An upright hit within the reach of two shown heads at
+// once is now not a new face (FaceTracker::match).
+TEST(FaceFailureModes, AHitBetweenTwoShownHeadsIsNotANewFace)
+{
+    const Score s = run("three", 57, 0, 116, 0.0, 100);
+    EXPECT_EQ(s.falsePositives, 0) << "frames" << s.log;
+    EXPECT_LE(s.missed, 3);
+}
+
 // Two faces crossing pulled the corners of the upper one's box apart: the similarity fit grew it
 // from 125 to 280 px over 30 frames (66-96) while the cascade missed it, and its corners, moving
 // together, held it for the whole occluded grace: a false face, and the face under it hidden
