@@ -383,6 +383,8 @@ void FaceTracker::Impl::startTrack(Rect box, float rollHint) noexcept
     t.face.centre = centreOf(box);
     t.face.size = static_cast<float>(std::max(box.width, box.height));
     t.face.hits = 1;
+    t.cameInAtEdge =
+        TrackVerifier::reachesBeyond(t.face, options.imageSize, TrackVerifier::kEdgeGrowth);
     t.face.state = options.confirmFrames <= 1 ? FaceState::Confirmed : FaceState::Tentative;
     t.face.confidence = 1.f / static_cast<float>(options.confirmFrames);
     // A face found still is not shown until it moves; it is dropped if it never does.
@@ -431,7 +433,7 @@ void FaceTracker::Impl::verifyUndetected() noexcept
         Track& t = tracks[static_cast<std::size_t>(i)];
         t.seen = t.detectedThisFrame;
         if (!t.seen && options.mode != FaceTrackingMode::None)
-            t.seen = verifier.verify(image(), t, windows);
+            t.seen = verifier.recentre(image(), t, windows) || verifier.verify(image(), t, windows);
     }
 }
 

@@ -181,6 +181,18 @@ TEST(FaceFailureModes, AFaceComingInAtTheEdgeIsShownAsItComesWhollyIntoView)
     EXPECT_LE(s.missed, 1);
 }
 
+// A face coming in at the right was boxed by the cascade 40 px inward of its centre while partly
+// out of view (frames 52-61), and the corners carried that box on after it was wholly in view:
+// shown off the face until frame 72 (18 false faces, 10 missed). A track that came in at the
+// edge is now re-centred, while young and near the edge, by a grouped scan of the image about
+// it (TrackVerifier::recentre).
+TEST(FaceFailureModes, AFaceComingInAtTheEdgeIsReCentredAsItComesIntoView)
+{
+    const Score s = run("enter-leave", 57, 40, 36);
+    EXPECT_EQ(s.falsePositives, 0) << "frames" << s.log;
+    EXPECT_LE(s.missed, 1);
+}
+
 // A face found at a cold start turning in place (rolling a degree a frame, its centre still) was
 // shown only after its roll had turned 4 degrees, at frame 6. The image's symmetry is now asked
 // after every 2 degrees of tracked turn (StaticFaceRule), and it was shown at frame 3.
