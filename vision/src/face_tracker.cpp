@@ -367,6 +367,7 @@ void FaceTracker::Impl::match(Rect box, float rollHint) noexcept
         return;
     t.face.centre = centreOf(box);
     t.face.size = static_cast<float>(std::max(box.width, box.height));
+    t.anchorSize = t.face.size;
     if (options.mode != FaceTrackingMode::None && t.pointCount < options.minCornersPerFace)
         cornerFlow.find(t, true);
 }
@@ -383,6 +384,7 @@ void FaceTracker::Impl::startTrack(Rect box, float rollHint) noexcept
     t.face.centre = centreOf(box);
     t.face.size = static_cast<float>(std::max(box.width, box.height));
     t.face.hits = 1;
+    t.anchorSize = t.face.size;
     t.cameInAtEdge =
         TrackVerifier::reachesBeyond(t.face, options.imageSize, TrackVerifier::kEdgeGrowth);
     t.face.state = options.confirmFrames <= 1 ? FaceState::Confirmed : FaceState::Tentative;
@@ -432,8 +434,13 @@ void FaceTracker::Impl::verifyUndetected() noexcept
     for (int i = 0; i < trackCount; ++i) {
         Track& t = tracks[static_cast<std::size_t>(i)];
         t.seen = t.detectedThisFrame;
+        if (!t.seen && options.mode != FaceTrackingMode::None &&
+            verifier.recentre(image(), t, windows)) {
+            t.seen = true;
+            cornerFlow.find(t, false);  // the corners that carried the box off the face go
+        }
         if (!t.seen && options.mode != FaceTrackingMode::None)
-            t.seen = verifier.recentre(image(), t, windows) || verifier.verify(image(), t, windows);
+            t.seen = verifier.verify(image(), t, windows);
     }
 }
 

@@ -27,6 +27,10 @@ constexpr int kWideMaxFace = 42;
 /// kWideReach still reaches beyond the image (the face may still be partly out of view).
 constexpr int kRecentreFrames = 30;
 constexpr float kWideReach = 2.f;
+/// recentre() also runs for a track whose box its corners have grown or shrunk by more than this
+/// factor since a detection or a grouped scan last placed it (before CornerFlow's kHeldGrowth,
+/// 1.25 of the size last seen, ends a missed track's occluded grace).
+constexpr float kRegrowth = 1.15f;
 
 FaceDetectorOptions wideOptions(const FaceTrackerOptions& o, Size window)
 {
@@ -106,14 +110,21 @@ bool TrackVerifier::recentre(const ConstImageView& gray, Track& t, long& windows
     // (twice its size, upright by its roll) is scanned grouped (§3, "Detection") and the track
     // re-centred on the face found nearest its centre: as more of the face comes into view, the
     // box follows it out to the edge.
-    if (!t.cameInAtEdge)
-        return false;
-    if (t.face.age > kRecentreFrames ||
-        !reachesBeyond(t.face, {gray.width, gray.height}, kWideReach)) {
+    //
+    // The same scan finds a face again in a box its corners have grown or shrunk by more than a
+    // face does between two anchorings (facegen seed 13's `two`: two faces crossing pulled one's
+    // corners apart, its box grew from 103 to 153 px over a face of 87 while first-hit
+    // verification still passed on part of it, a false face and a missed one for 7 frames, the
+    // face unshown until the whole mask's scan found it again 6 frames after the track went):
+    // the scan is then of the size the box was last placed at.
+    if (t.cameInAtEdge && (t.face.age > kRecentreFrames ||
+                           !reachesBeyond(t.face, {gray.width, gray.height}, kWideReach)))
         t.cameInAtEdge = false;
+    const bool grown = t.anchorSize > 0.f && (t.face.size > kRegrowth * t.anchorSize ||
+                                              t.face.size * kRegrowth < t.anchorSize);
+    if (!t.cameInAtEdge && !grown)
         return false;
-    }
-    const float side = t.face.size * kWideContext;
+    const float side = (grown ? t.anchorSize : t.face.size) * kWideContext;
     if (!warpUpright(gray, t.face.centre, t.face.rollDegrees, side, widePatch_.view()))
         return false;
     const int n = wideDetector_.detect(widePatch_.view());
@@ -138,7 +149,7 @@ bool TrackVerifier::recentre(const ConstImageView& gray, Track& t, long& windows
     const Rect& b = boxes[static_cast<std::size_t>(best)];
     // The face the track holds is the one about its centre: a group whose centre is more than
     // half the track's size away is another face, or a face beside this one.
-    const float faceHalf = 0.5f * static_cast<float>(kWidePatch) / kWideContext;
+    const float faceHalf = 0.5f * static_cast<float>(kWidePatch) / kWideContext;  // patch px
     if (bestDistance > faceHalf * faceHalf)
         return false;
     const float px = (static_cast<float>(b.x) + static_cast<float>(b.width) * 0.5f - half) * unit;
@@ -148,6 +159,7 @@ bool TrackVerifier::recentre(const ConstImageView& gray, Track& t, long& windows
     t.face.centre.x += c * px - s * py;
     t.face.centre.y += s * px + c * py;
     t.face.size = static_cast<float>(b.width) * unit;
+    t.anchorSize = t.face.size;
     t.verifiedSinceAnchor = 0;
     correctRoll(gray, t);
     return true;
@@ -249,6 +261,7 @@ void TrackVerifier::reanchor(const ConstImageView& gray, Track& t, const Rect& b
     t.face.centre.x += 0.8f * (c * px - s * py);
     t.face.centre.y += 0.8f * (s * px + c * py);
     t.face.size += 0.8f * (size - t.face.size);
+    t.anchorSize = t.face.size;
     t.verifiedSinceAnchor = 0;
     correctRoll(gray, t);
 }

@@ -6,7 +6,7 @@
 //
 // A track that came in at the image's edge is first re-centred, while young and near the edge,
 // by a grouped scan of the image about it (recentre()): the cascade boxes a face partly out of
-// view off its centre.
+// view off its centre. So is a track whose box its corners grew or shrank (faces crossing).
 //
 // Use: construct once with the tracker's options; beginFrame() once a frame, then recentre() or
 // else verify() a track each frame it was not detected. At most one track re-anchors in a frame
@@ -40,8 +40,10 @@ public:
     bool verify(const ConstImageView& gray, Track& t, long& windows) noexcept;
 
     /// A track that came in at the image's edge (Track::cameInAtEdge), while young and within
-    /// its size of the edge: a grouped scan of the image about it, twice its size, re-centres and
-    /// re-sizes it on the face found there. True when it did (the face is there); false when the
+    /// its size of the edge, or one whose box its corners grew or shrank by more than 15% since
+    /// it was last placed (Track::anchorSize): a grouped scan of the image about it, twice its
+    /// size (its placed size), re-centres and re-sizes it on the face found there. True when it
+    /// did (the face is there; its corners are then the caller's to find afresh); false when the
     /// track is not such a one (any more) or nothing was found: verify() then as usual.
     bool recentre(const ConstImageView& gray, Track& t, long& windows) noexcept;
 
