@@ -25,6 +25,12 @@ struct Track {
     /// there, whatever the cascade says (a hand or another head over part of it, a turned head).
     bool heldByCorners = false;
     float seenSize = 0.f;  ///< the box's size when the face was last detected or verified
+    /// The box's size when a detection or a grouped scan last placed it (its corners' fit moves
+    /// it in between; TrackVerifier::recentre).
+    float anchorSize = 0.f;
+    /// Started with its box reaching beyond the image: found by the part of it in view, which
+    /// the cascade boxes off the face's centre (TrackVerifier::recentre).
+    bool cameInAtEdge = false;
     FaceMotion motion;  ///< StaticFaceRule's record of how the face moved
 };
 

@@ -17,9 +17,33 @@ constexpr float kVerifyContext = 1.6f;
 /// Verification retries this far either side of the tracked roll (the upright cascade finds
 /// faces within about +-15 degrees).
 constexpr float kVerifyRollStep = 12.f;
-/// A face box grown by this factor that reaches beyond the image is a face at its edge: one
-/// found by the part in view may be this much larger.
-constexpr float kEdgeGrowth = 1.5f;
+/// recentre(): the side of the image scanned about a track that came in at the edge, in track
+/// sizes, and its patch (the face about half of it, so the cascade's window fits it at a few
+/// scales from 0.75 to 1.3 of its size).
+constexpr float kWideContext = 2.f;
+constexpr int kWidePatch = 64;
+constexpr int kWideMaxFace = 42;
+/// recentre() runs for a track this young (one second at 30 fps) whose box grown by
+/// kWideReach still reaches beyond the image (the face may still be partly out of view).
+constexpr int kRecentreFrames = 30;
+constexpr float kWideReach = 2.f;
+/// recentre() also runs for a track whose box its corners have grown or shrunk by more than this
+/// factor since a detection or a grouped scan last placed it (before CornerFlow's kHeldGrowth,
+/// 1.25 of the size last seen, ends a missed track's occluded grace).
+constexpr float kRegrowth = 1.15f;
+
+FaceDetectorOptions wideOptions(const FaceTrackerOptions& o, Size window)
+{
+    FaceDetectorOptions d;
+    d.maxFrameSize = {kWidePatch, kWidePatch};
+    d.scaleFactor = o.detector.scaleFactor;
+    d.minNeighbors = o.detector.minNeighbors;
+    d.minSize = window;
+    d.maxSize = {kWideMaxFace, kWideMaxFace};
+    d.maxRawHits = 1024;
+    d.maxFaces = 16;
+    return d;
+}
 
 FaceDetectorOptions verifyOptions(const FaceTrackerOptions& o, Size window)
 {
@@ -39,10 +63,7 @@ FaceDetectorOptions verifyOptions(const FaceTrackerOptions& o, Size window)
 /// The face's box, grown by kEdgeGrowth, reaches beyond the image.
 bool atEdge(const TrackedFace& f, const ConstImageView& gray) noexcept
 {
-    const float half = f.size * 0.5f * kEdgeGrowth;
-    return f.centre.x - half < 0.f || f.centre.y - half < 0.f ||
-           f.centre.x + half > static_cast<float>(gray.width) ||
-           f.centre.y + half > static_cast<float>(gray.height);
+    return TrackVerifier::reachesBeyond(f, {gray.width, gray.height}, TrackVerifier::kEdgeGrowth);
 }
 
 /// Whether a box of side `size` whose centre is (dx, dy) from the track's shares at least half
@@ -65,8 +86,83 @@ TrackVerifier::TrackVerifier(const HaarCascade& cascade, const FaceTrackerOption
     : options_(options),
       detector_(cascade, verifyOptions(options, {cascade.windowWidth, cascade.windowHeight})),
       patch_(options.verifyPatchSize, options.verifyPatchSize, PixelFormat::Gray8),
+      wideDetector_(cascade, wideOptions(options, {cascade.windowWidth, cascade.windowHeight})),
+      widePatch_(kWidePatch, kWidePatch, PixelFormat::Gray8),
       imageRoll_(imageRoll)
 {
+}
+
+bool TrackVerifier::reachesBeyond(const TrackedFace& f, Size image, float growth) noexcept
+{
+    const float half = f.size * 0.5f * growth;
+    return f.centre.x - half < 0.f || f.centre.y - half < 0.f ||
+           f.centre.x + half > static_cast<float>(image.width) ||
+           f.centre.y + half > static_cast<float>(image.height);
+}
+
+bool TrackVerifier::recentre(const ConstImageView& gray, Track& t, long& windows) noexcept
+{
+    // A face coming into view is found by the part of it in view, and the cascade boxes that
+    // part off the face's centre (facegen seed 57's `enter-leave`: 40 px inward of a 110 px face
+    // coming in at the right, until it was wholly in view); the corners then carry the box as
+    // found, and verify()'s patch, 1.6 times the box about the wrong centre, does not reach
+    // the face's far side. So while such a track is young and near the edge, the image about it
+    // (twice its size, upright by its roll) is scanned grouped (§3, "Detection") and the track
+    // re-centred on the face found nearest its centre: as more of the face comes into view, the
+    // box follows it out to the edge.
+    //
+    // The same scan finds a face again in a box its corners have grown or shrunk by more than a
+    // face does between two anchorings (facegen seed 13's `two`: two faces crossing pulled one's
+    // corners apart, its box grew from 103 to 153 px over a face of 87 while first-hit
+    // verification still passed on part of it, a false face and a missed one for 7 frames, the
+    // face unshown until the whole mask's scan found it again 6 frames after the track went):
+    // the scan is then of the size the box was last placed at.
+    if (t.cameInAtEdge && (t.face.age > kRecentreFrames ||
+                           !reachesBeyond(t.face, {gray.width, gray.height}, kWideReach)))
+        t.cameInAtEdge = false;
+    const bool grown = t.anchorSize > 0.f && (t.face.size > kRegrowth * t.anchorSize ||
+                                              t.face.size * kRegrowth < t.anchorSize);
+    if (!t.cameInAtEdge && !grown)
+        return false;
+    const float side = (grown ? t.anchorSize : t.face.size) * kWideContext;
+    if (!warpUpright(gray, t.face.centre, t.face.rollDegrees, side, widePatch_.view()))
+        return false;
+    const int n = wideDetector_.detect(widePatch_.view());
+    windows += wideDetector_.windowsEvaluated();
+    if (n <= 0)
+        return false;
+    const float half = static_cast<float>(kWidePatch) * 0.5f;
+    const float unit = side / static_cast<float>(kWidePatch);
+    const std::span<const Rect> boxes = wideDetector_.faces();
+    int best = -1;
+    float bestDistance = 1e9f;
+    for (int i = 0; i < n; ++i) {
+        const Rect& b = boxes[static_cast<std::size_t>(i)];
+        const float dx = static_cast<float>(b.x) + static_cast<float>(b.width) * 0.5f - half;
+        const float dy = static_cast<float>(b.y) + static_cast<float>(b.height) * 0.5f - half;
+        const float d = dx * dx + dy * dy;
+        if (d < bestDistance) {
+            bestDistance = d;
+            best = i;
+        }
+    }
+    const Rect& b = boxes[static_cast<std::size_t>(best)];
+    // The face the track holds is the one about its centre: a group whose centre is more than
+    // half the track's size away is another face, or a face beside this one.
+    const float faceHalf = 0.5f * static_cast<float>(kWidePatch) / kWideContext;  // patch px
+    if (bestDistance > faceHalf * faceHalf)
+        return false;
+    const float px = (static_cast<float>(b.x) + static_cast<float>(b.width) * 0.5f - half) * unit;
+    const float py = (static_cast<float>(b.y) + static_cast<float>(b.height) * 0.5f - half) * unit;
+    const float c = std::cos(t.face.rollDegrees / kDegreesPerRadian);
+    const float s = std::sin(t.face.rollDegrees / kDegreesPerRadian);
+    t.face.centre.x += c * px - s * py;
+    t.face.centre.y += s * px + c * py;
+    t.face.size = static_cast<float>(b.width) * unit;
+    t.anchorSize = t.face.size;
+    t.verifiedSinceAnchor = 0;
+    correctRoll(gray, t);
+    return true;
 }
 
 bool TrackVerifier::verify(const ConstImageView& gray, Track& t, long& windows) noexcept
@@ -165,6 +261,7 @@ void TrackVerifier::reanchor(const ConstImageView& gray, Track& t, const Rect& b
     t.face.centre.x += 0.8f * (c * px - s * py);
     t.face.centre.y += 0.8f * (s * px + c * py);
     t.face.size += 0.8f * (size - t.face.size);
+    t.anchorSize = t.face.size;
     t.verifiedSinceAnchor = 0;
     correctRoll(gray, t);
 }
