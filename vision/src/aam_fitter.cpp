@@ -23,9 +23,8 @@
 //    everything is fitted. A tracked face starts from its last fit moved with the tracker.
 //  - The fit error is the projected-out residual's rms in units of the mean appearance's standard
 //    deviation (the span of the modes removed: what no face of the model explains), measured on
-//    the last iteration's error image. Verification rejects a fit above options.maxResidual
-//    (more for a turned head: options.turnedResidualSlack) or turned beyond
-//    options.maxAngleDegrees; the caller then keeps the 2D pose.
+//    the last iteration's error image. Verification rejects a fit above options.maxResidual or
+//    turned beyond options.maxAngleDegrees; the caller then keeps the 2D pose.
 #include "vision/aam_fitter.hpp"
 
 #include "aam_composition.hpp"
@@ -213,9 +212,7 @@ void finishResult(const AamFitterOptions& options, const std::vector<float>& sha
                                                         shape[2 * static_cast<std::size_t>(v) + 1]};
     if (result.outcome == AamFitOutcome::Diverged)
         return;
-    const float limit =
-        options.maxResidual * (1.f + options.turnedResidualSlack * std::abs(std::sin(h.yaw)));
-    const bool plausible = face.headSet && fitError <= limit &&
+    const bool plausible = face.headSet && fitError <= options.maxResidual &&
                            std::abs(result.yawDegrees) <= options.maxAngleDegrees &&
                            std::abs(result.pitchDegrees) <= options.maxAngleDegrees;
     if (!plausible)

@@ -168,8 +168,9 @@ TEST_F(ImmFit, TurnedHeadsComeOutTurnedTheRightWay)
     EXPECT_EQ(rightSign, held);
     EXPECT_GE(magnitude / std::max(held, 1), 15.0);  // turned, not left at the frontal start
     // Both sides: the heads turned to the person's left (their broad side in the photographs'
-    // shadow) held none of ten from the frontal start alone, whose first steps lowered the gain
-    // instead of moving the mesh; they start turned now (AamFitter::chooseStart).
+    // shadow) held 1 of 10 here from the frontal start alone (none from dlib's boxes in
+    // mirror-eval), whose first steps lowered the gain instead of moving the mesh; they start
+    // turned now (AamFitter::chooseStart): 3 of 10.
     vision::AamFitterOptions frontalOnly;
     frontalOnly.startYawDegrees = 0.f;
     vision::AamFitter frontalFitter(*model_, frontalOnly);

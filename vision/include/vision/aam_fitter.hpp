@@ -51,10 +51,6 @@ struct AamFitterOptions {
     /// Verification: a fit whose projected-out appearance residual (rms, in units of the mean
     /// appearance's standard deviation) exceeds this is Rejected.
     float maxResidual = 0.8f;
-    /// A turned head's limit is maxResidual * (1 + turnedResidualSlack * |sin yaw|): the model's
-    /// appearance, learnt from frontal faces, explains less of a turned one (its far side
-    /// foreshortened and partly hidden, its broad side lit differently).
-    float turnedResidualSlack = 0.25f;
     float maxAngleDegrees = 60.f;  ///< a fitted yaw or pitch beyond this is Rejected
     AamSampling sampling = AamSampling::Nearest;
     /// The shape units (the person's proportions) are fitted on a track's first fits and then
