@@ -232,13 +232,17 @@ void drawFace(const vision::AamModel& m, const SyntheticFaceSpec& spec,
     const float cx = 0.5f * (left + right), cy = 0.5f * (top + bottom) - 0.1f * (bottom - top);
     const float rx = 0.62f * (right - left), ry = 0.75f * (bottom - top);
     const float skin = spec.gain * 0.6f + spec.bias;
+    const auto lit = [&](int x, float grey) {
+        const float u = std::clamp((static_cast<float>(x) - cx) / rx, -1.f, 1.f);
+        return grey * (1.f - 0.5f * spec.lightFromRight * (1.f - u));
+    };
     for (int y = 0; y < height; ++y)
         for (int x = 0; x < width; ++x) {
             const float u = (static_cast<float>(x) - cx) / rx,
                         v = (static_cast<float>(y) - cy) / ry;
             if (u * u + v * v <= 1.f)
                 img.row(y)[x] =
-                    static_cast<std::uint8_t>(std::clamp(skin - 20.f * v * v, 0.f, 255.f));
+                    static_cast<std::uint8_t>(std::clamp(lit(x, skin - 20.f * v * v), 0.f, 255.f));
         }
     std::vector<float> depth(static_cast<std::size_t>(width) * height,
                              -std::numeric_limits<float>::infinity());
@@ -277,8 +281,8 @@ void drawFace(const vision::AamModel& m, const SyntheticFaceSpec& spec,
                 const float fx = l0 * s0(0, 0) + l.x() * s0(1, 0) + l.y() * s0(2, 0);
                 const float fy = l0 * s0(0, 1) + l.x() * s0(1, 1) + l.y() * s0(2, 1);
                 const float v =
-                    spec.gain * sampleBilinear(grid, m.frameWidth, m.frameHeight, fx, fy) +
-                    spec.bias;
+                    lit(x, spec.gain * sampleBilinear(grid, m.frameWidth, m.frameHeight, fx, fy) +
+                               spec.bias);
                 img.row(y)[x] = static_cast<std::uint8_t>(std::clamp(std::lround(v), 0L, 255L));
             }
     }

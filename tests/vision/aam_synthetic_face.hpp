@@ -17,6 +17,10 @@ struct SyntheticFaceSpec {
     vision::AamHead head;                  ///< the true pose and expression (sigma: the shape)
     std::vector<float> appearanceWeights;  ///< per appearance mode, in standard deviations
     float gain = 45.f, bias = 120.f;       ///< grey = gain * appearance + bias
+    /// Light from the image's right (as IMM's photographs are lit): the head's grey is scaled by
+    /// 1 - lightFromRight * (1 - u) / 2, u from -1 at the head's left edge to 1 at its right: its
+    /// image-left side in shadow (0: even light).
+    float lightFromRight = 0.f;
     std::uint32_t backgroundSeed = 1;
 };
 

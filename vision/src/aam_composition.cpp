@@ -74,6 +74,11 @@ void composeInverse(const Tables& t, const TriangleAffine* vertexMaps, const flo
         shape[2 * v] = image.x();
         shape[2 * v + 1] = image.y();
     }
+    decomposeShape(t, q, p, shape);
+}
+
+void decomposeShape(const Tables& t, float* q, float* p, float* shape) noexcept
+{
     // q: s-dagger less s0 on the similarity basis (exact: the modes are orthogonal to it).
     for (int i = 0; i < 4; ++i) {
         float sum = 0.f;

@@ -36,4 +36,8 @@ void vertexAffines(const Tables& t, const TriangleAffine* triangles,
 void composeInverse(const Tables& t, const TriangleAffine* vertexMaps, const float* dq,
                     const float* dp, float* q, float* p, float* shape) noexcept;
 
+/// An image shape (2V points in `shape`) as q (its projection on the similarity basis) and p (the
+/// modes' projection of N^-1 of it, within the modes' limits); `shape` ends as N(s0 + S p; q).
+void decomposeShape(const Tables& t, float* q, float* p, float* shape) noexcept;
+
 }  // namespace vision::aam

@@ -108,16 +108,16 @@ void projectHead(const Tables& t, const AamHead& head, float* points,
 
 void placeHeadOn(const Tables& t, const float* shape, AamHead& head) noexcept
 {
-    // image = t + (a x + b y', b x - a y') with (x, y') the frontal model point: linear in
-    // (tx, ty, a, b), as the builder's similarity solve.
+    // image = t + (a x + b y', b x - a y') with (x, y') the model point turned by the head's yaw
+    // (0 for a frontal start): linear in (tx, ty, a, b), as the builder's similarity solve.
     head.pitch = 0.f;
-    head.yaw = 0.f;
+    const Eigen::Matrix3f yaw = yawMatrix(head.yaw, false);
     const UnitVector units = unitParameters(head);
     Eigen::Matrix4d normal = Eigen::Matrix4d::Zero();
     Eigen::Vector4d rhs = Eigen::Vector4d::Zero();
     for (int v = 0; v < t.vertices; ++v) {
-        const Eigen::Vector3f g = t.headVertices[static_cast<std::size_t>(v)] +
-                                  t.headUnits[static_cast<std::size_t>(v)] * units;
+        const Eigen::Vector3f g = yaw * (t.headVertices[static_cast<std::size_t>(v)] +
+                                         t.headUnits[static_cast<std::size_t>(v)] * units);
         Eigen::Matrix<double, 2, 4> row;
         row << 1, 0, g.x(), g.y(), 0, 1, -g.y(), g.x();
         normal.noalias() += row.transpose() * row;

@@ -22,9 +22,10 @@ void setHeadParameters(AamHead& head, const Eigen::Matrix<float, kHeadParameters
 void projectHead(const Tables& t, const AamHead& head, float* points,
                  HeadJacobian* jacobian) noexcept;
 
-/// The head's scale, roll and translation that best put its frontal projection (yaw, pitch 0, its
-/// own sigma and tau) onto `shape` (2V image points), by linear least squares; yaw and pitch set
-/// to 0. The start of a new face's 3D term.
+/// The head's scale, roll and translation that best put its projection at its own yaw (pitch 0,
+/// its own sigma and tau) onto `shape` (2V image points), by linear least squares; pitch set to
+/// 0, yaw kept (0 for a frontal start; a turned start's yaw otherwise). The start of a new face's
+/// 3D term.
 void placeHeadOn(const Tables& t, const float* shape, AamHead& head) noexcept;
 
 }  // namespace vision::aam

@@ -56,6 +56,9 @@ struct AamFitterOptions {
     /// The shape units (the person's proportions) are fitted on a track's first fits and then
     /// frozen; the animation units keep following the face (5.3.3).
     int fitsBeforeShapeFreeze = 3;
+    /// A new face starts from whichever of the frontal mean shape and the CANDIDE head turned
+    /// this far to either side (degrees) its image matches best (0: always frontal).
+    float startYawDegrees = 25.f;
     /// How appearanceParameters() samples the image: it runs only while a face's signature is
     /// collected (a few frames per track), so it can afford interpolation.
     AamSampling appearanceSampling = AamSampling::Bilinear;
@@ -173,6 +176,7 @@ public:
     struct Scratch;
 
 private:
+    void chooseStart(ConstImageView grey, AamFaceState& face) noexcept;
     double objective(AamFaceState& face, float error, bool similarityPhase) noexcept;
     void buildSystem(ConstImageView grey, AamFaceState& face, bool similarityPhase,
                      bool shapeFrozen) noexcept;
