@@ -66,6 +66,42 @@ bool atEdge(const TrackedFace& f, const ConstImageView& gray) noexcept
     return TrackVerifier::reachesBeyond(f, {gray.width, gray.height}, TrackVerifier::kEdgeGrowth);
 }
 
+/// Of the first `n` boxes of a grouped scan of a square patch (centre at `half`, patch pixels),
+/// the one whose centre is nearest the patch's centre; `distance2`: its squared distance.
+const Rect& nearestToCentre(std::span<const Rect> boxes, int n, float half,
+                            float& distance2) noexcept
+{
+    int best = 0;
+    distance2 = 1e9f;
+    for (int i = 0; i < n; ++i) {
+        const Rect& b = boxes[static_cast<std::size_t>(i)];
+        const float dx = static_cast<float>(b.x) + static_cast<float>(b.width) * 0.5f - half;
+        const float dy = static_cast<float>(b.y) + static_cast<float>(b.height) * 0.5f - half;
+        const float d = dx * dx + dy * dy;
+        if (d < distance2) {
+            distance2 = d;
+            best = i;
+        }
+    }
+    return boxes[static_cast<std::size_t>(best)];
+}
+
+/// A box's centre from the patch's centre (at `half`), in image pixels (`unit` a patch pixel),
+/// along the patch's axes.
+Point2f offsetInPatch(const Rect& b, float half, float unit) noexcept
+{
+    return {(static_cast<float>(b.x) + static_cast<float>(b.width) * 0.5f - half) * unit,
+            (static_cast<float>(b.y) + static_cast<float>(b.height) * 0.5f - half) * unit};
+}
+
+/// An offset along the axes of a patch warped upright by `rollDegrees`, turned back to the image.
+Point2f turnedToImage(Point2f p, float rollDegrees) noexcept
+{
+    const float c = std::cos(rollDegrees / kDegreesPerRadian);
+    const float s = std::sin(rollDegrees / kDegreesPerRadian);
+    return {c * p.x - s * p.y, s * p.x + c * p.y};
+}
+
 /// Whether a box of side `size` whose centre is (dx, dy) from the track's shares at least half
 /// (IoU) with the track's box of side `track`.
 bool sameFace(float track, float size, float dx, float dy) noexcept
@@ -133,31 +169,16 @@ bool TrackVerifier::recentre(const ConstImageView& gray, Track& t, long& windows
         return false;
     const float half = static_cast<float>(kWidePatch) * 0.5f;
     const float unit = side / static_cast<float>(kWidePatch);
-    const std::span<const Rect> boxes = wideDetector_.faces();
-    int best = -1;
-    float bestDistance = 1e9f;
-    for (int i = 0; i < n; ++i) {
-        const Rect& b = boxes[static_cast<std::size_t>(i)];
-        const float dx = static_cast<float>(b.x) + static_cast<float>(b.width) * 0.5f - half;
-        const float dy = static_cast<float>(b.y) + static_cast<float>(b.height) * 0.5f - half;
-        const float d = dx * dx + dy * dy;
-        if (d < bestDistance) {
-            bestDistance = d;
-            best = i;
-        }
-    }
-    const Rect& b = boxes[static_cast<std::size_t>(best)];
+    float bestDistance = 0.f;
+    const Rect& b = nearestToCentre(wideDetector_.faces(), n, half, bestDistance);
     // The face the track holds is the one about its centre: a group whose centre is more than
     // half the track's size away is another face, or a face beside this one.
     const float faceHalf = 0.5f * static_cast<float>(kWidePatch) / kWideContext;  // patch px
     if (bestDistance > faceHalf * faceHalf)
         return false;
-    const float px = (static_cast<float>(b.x) + static_cast<float>(b.width) * 0.5f - half) * unit;
-    const float py = (static_cast<float>(b.y) + static_cast<float>(b.height) * 0.5f - half) * unit;
-    const float c = std::cos(t.face.rollDegrees / kDegreesPerRadian);
-    const float s = std::sin(t.face.rollDegrees / kDegreesPerRadian);
-    t.face.centre.x += c * px - s * py;
-    t.face.centre.y += s * px + c * py;
+    const Point2f move = turnedToImage(offsetInPatch(b, half, unit), t.face.rollDegrees);
+    t.face.centre.x += move.x;
+    t.face.centre.y += move.y;
     t.face.size = static_cast<float>(b.width) * unit;
     t.anchorSize = t.face.size;
     t.verifiedSinceAnchor = 0;
@@ -221,21 +242,9 @@ bool TrackVerifier::verifyAt(const ConstImageView& gray, Track& t, float roll,
     windows += detector_.windowsEvaluated();
     if (n <= 0)
         return false;
+    float distance = 0.f;
     const float half = static_cast<float>(options_.verifyPatchSize) * 0.5f;
-    const std::span<const Rect> boxes = detector_.faces();
-    int best = -1;
-    float bestDistance = 1e9f;
-    for (int i = 0; i < n; ++i) {
-        const Rect& b = boxes[static_cast<std::size_t>(i)];
-        const float dx = static_cast<float>(b.x) + static_cast<float>(b.width) * 0.5f - half;
-        const float dy = static_cast<float>(b.y) + static_cast<float>(b.height) * 0.5f - half;
-        const float d = dx * dx + dy * dy;
-        if (d < bestDistance) {
-            bestDistance = d;
-            best = i;
-        }
-    }
-    reanchor(gray, t, boxes[static_cast<std::size_t>(best)], roll, side);
+    reanchor(gray, t, nearestToCentre(detector_.faces(), n, half, distance), roll, side);
     return true;
 }
 
@@ -247,19 +256,17 @@ void TrackVerifier::reanchor(const ConstImageView& gray, Track& t, const Rect& b
     const float size = static_cast<float>(b.width) * unit;
     if (size < t.face.size * 0.6f || size > t.face.size * 1.6f)
         return;  // a face is there, but this box is not a sensible measure of it
-    // Patch offset back to the image: rotate by the roll used for warping.
-    const float px = (static_cast<float>(b.x) + static_cast<float>(b.width) * 0.5f - half) * unit;
-    const float py = (static_cast<float>(b.y) + static_cast<float>(b.height) * 0.5f - half) * unit;
+    const Point2f offset = offsetInPatch(b, half, unit);
     // A track drifts by a few percent of its size between re-anchorings: a box that shares less
     // than half with it is another grouping of windows (facegen seed 42's `four`: one over the
     // chin and neck, a quarter of the face below it, moved the box off the face), not a measure
     // of this face.
-    if (!sameFace(t.face.size, size, px, py))
+    if (!sameFace(t.face.size, size, offset.x, offset.y))
         return;
-    const float c = std::cos(roll / kDegreesPerRadian);
-    const float s = std::sin(roll / kDegreesPerRadian);
-    t.face.centre.x += 0.8f * (c * px - s * py);
-    t.face.centre.y += 0.8f * (s * px + c * py);
+    // Patch offset back to the image: rotated by the roll used for warping.
+    const Point2f move = turnedToImage(offset, roll);
+    t.face.centre.x += 0.8f * move.x;
+    t.face.centre.y += 0.8f * move.y;
     t.face.size += 0.8f * (size - t.face.size);
     t.anchorSize = t.face.size;
     t.verifiedSinceAnchor = 0;
