@@ -138,3 +138,61 @@ TEST(CornerDetector, DetectDoesNotAllocate)
     EXPECT_EQ(scope.counts().cxxNew, 0);
     EXPECT_EQ(scope.counts().ownMalloc, 0);
 }
+
+// The scores are the smaller eigenvalue of the tensor summed over the block pixel by pixel (the
+// definition): the detector sums it by rows, which in int32 is exact, so every corner and score
+// must be the definition's to the bit, for each block size and for areas at the image's border.
+TEST(CornerDetector, ScoresAreTheBlockSumsDefinitionBitForBit)
+{
+    const int w = 97, h = 61;
+    ImageBuffer img(w, h, vision::PixelFormat::Gray8);
+    std::uint32_t state = 12345;
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            state = state * 1664525u + 1013904223u;
+            // Smooth blobs plus noise: many local maxima, with ties unlikely.
+            const double v = 128 + 60 * std::sin(x * 0.31) * std::cos(y * 0.23) + (state >> 28);
+            img.view().row(y)[x] = static_cast<std::uint8_t>(v);
+        }
+    for (const int block : {3, 5, 7}) {
+        for (const vision::Rect area : {vision::Rect{0, 0, w, h}, vision::Rect{10, 7, 40, 30},
+                                        vision::Rect{70, 40, 40, 40}}) {
+            CornerDetector det({w, h}, {.maxCorners = 400, .minDistance = 0.f, .blockSize = block});
+            Corner got[400];
+            const int n = det.detect(img.view(), area, got, 400);
+            ASSERT_GT(n, 0);
+            // The definition at each returned corner.
+            const int r = block / 2;
+            auto sobel = [&](int x, int y, bool wantX) {
+                auto p = [&](int xx, int yy) { return static_cast<int>(img.view().row(yy)[xx]); };
+                return wantX ? (p(x + 1, y - 1) - p(x - 1, y - 1)) +
+                                   2 * (p(x + 1, y) - p(x - 1, y)) +
+                                   (p(x + 1, y + 1) - p(x - 1, y + 1))
+                             : (p(x - 1, y + 1) - p(x - 1, y - 1)) +
+                                   2 * (p(x, y + 1) - p(x, y - 1)) +
+                                   (p(x + 1, y + 1) - p(x + 1, y - 1));
+            };
+            for (int i = 0; i < n; ++i) {
+                const int cx = static_cast<int>(got[i].position.x);
+                const int cy = static_cast<int>(got[i].position.y);
+                std::int32_t sxx = 0, sxy = 0, syy = 0;
+                for (int by = -r; by <= r; ++by)
+                    for (int bx = -r; bx <= r; ++bx) {
+                        const int gx = sobel(cx + bx, cy + by, true);
+                        const int gy = sobel(cx + bx, cy + by, false);
+                        sxx += gx * gx;
+                        sxy += gx * gy;
+                        syy += gy * gy;
+                    }
+                const float a = static_cast<float>(sxx);
+                const float b = static_cast<float>(sxy);
+                const float c = static_cast<float>(syy);
+                const float e = 0.5f * (a + c - std::sqrt((a - c) * (a - c) + 4.f * b * b));
+                EXPECT_EQ(got[i].score, e) << "block " << block << " corner " << i;
+                if (i > 0) {
+                    EXPECT_GE(got[i - 1].score, got[i].score);
+                }
+            }
+        }
+    }
+}

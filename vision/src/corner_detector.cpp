@@ -25,11 +25,72 @@ CornerDetector::CornerDetector(Size maxImage, const CornerDetectorOptions& optio
     dy_ = std::make_unique<std::int16_t[]>(area);
     score_ = std::make_unique<float[]>(area);
     candidates_ = std::make_unique<Candidate[]>(area);
+    ring_ = std::make_unique<std::int32_t[]>(static_cast<std::size_t>(7) * 3 * maxImage.width);
+    tensor_ = std::make_unique<std::int32_t[]>(static_cast<std::size_t>(3) * maxImage.width);
 }
 
 void CornerDetector::setMaxCorners(int count) noexcept
 {
     options_.maxCorners = std::max(1, count);
+}
+
+std::int32_t* CornerDetector::ringRow(int slot) noexcept
+{
+    return ring_.get() + static_cast<std::ptrdiff_t>(slot) * 3 * maxImage_.width;
+}
+
+void CornerDetector::sumBlockColumns(const std::int16_t* dx, const std::int16_t* dy, int width,
+                                     int side, std::int32_t* out) noexcept
+{
+    const std::ptrdiff_t plane = maxImage_.width;
+    std::int32_t* __restrict xx = out;
+    std::int32_t* __restrict xy = out + plane;
+    std::int32_t* __restrict yy = out + 2 * plane;
+    for (int x = 0; x < width; ++x) {
+        xx[x] = dx[x] * dx[x];
+        xy[x] = dx[x] * dy[x];
+        yy[x] = dy[x] * dy[x];
+    }
+    for (int bx = 1; bx < side; ++bx) {
+        const std::int16_t* __restrict px = dx + bx;
+        const std::int16_t* __restrict py = dy + bx;
+        for (int x = 0; x < width; ++x) {
+            xx[x] += px[x] * px[x];
+            xy[x] += px[x] * py[x];
+            yy[x] += py[x] * py[x];
+        }
+    }
+}
+
+float CornerDetector::scoreRow(int side, float* __restrict out, int width) noexcept
+{
+    const std::ptrdiff_t plane = maxImage_.width;
+    std::int32_t* __restrict sxx = tensor_.get();
+    std::int32_t* __restrict sxy = sxx + plane;
+    std::int32_t* __restrict syy = sxx + 2 * plane;
+    // Each plane (xx, xy, yy) summed over the ring's rows on its own: simple loops vectorise.
+    for (int p = 0; p < 3; ++p) {
+        std::int32_t* __restrict dst = sxx + p * plane;
+        const std::int32_t* __restrict first = ringRow(0) + p * plane;
+        for (int x = 0; x < width; ++x)
+            dst[x] = first[x];
+        for (int k = 1; k < side; ++k) {
+            const std::int32_t* __restrict src = ringRow(k) + p * plane;
+            for (int x = 0; x < width; ++x)
+                dst[x] += src[x];
+        }
+    }
+    for (int x = 0; x < width; ++x) {
+        const float a = static_cast<float>(sxx[x]);
+        const float b = static_cast<float>(sxy[x]);
+        const float c = static_cast<float>(syy[x]);
+        out[x] = 0.5f * (a + c - std::sqrt((a - c) * (a - c) + 4.f * b * b));
+    }
+    // The row's largest score, apart: a running maximum would keep the loop above scalar.
+    float best = 0.f;
+    for (int x = 0; x < width; ++x)
+        best = best < out[x] ? out[x] : best;
+    return best;
 }
 
 int CornerDetector::detect(ConstImageView gray, Rect area, Corner* out, int capacity) noexcept
@@ -78,30 +139,20 @@ int CornerDetector::detect(ConstImageView gray, Rect area, Corner* out, int capa
                                               (dn[x + 1] - up[x + 1]));
         }
     }
-    // Structure tensor over the block (int32: at most 49 * 1020^2) and its smaller eigenvalue.
+    // Structure tensor over the block (int32: at most 49 * 1020^2) and its smaller eigenvalue,
+    // a row at a time: the block's sums are those of its rows' sums over its columns, added in
+    // the same int32 (exact), so the scores are those of summing the block pixel by pixel. Each
+    // pass runs over a whole row (the compiler vectorises them); a gradient row's column sums
+    // are kept in a ring of 2r + 1 rows.
+    const int side = 2 * r + 1;
     float* score = score_.get();
     float best = 0.f;
-    for (int y = 0; y < sh; ++y) {
-        for (int x = 0; x < sw; ++x) {
-            std::int32_t sxx = 0;
-            std::int32_t sxy = 0;
-            std::int32_t syy = 0;
-            for (int by = 0; by <= 2 * r; ++by) {
-                const std::int16_t* px = dx + (y + by) * gw + x;
-                const std::int16_t* py = dy + (y + by) * gw + x;
-                for (int bx = 0; bx <= 2 * r; ++bx) {
-                    sxx += px[bx] * px[bx];
-                    sxy += px[bx] * py[bx];
-                    syy += py[bx] * py[bx];
-                }
-            }
-            const float a = static_cast<float>(sxx);
-            const float b = static_cast<float>(sxy);
-            const float c = static_cast<float>(syy);
-            const float e = 0.5f * (a + c - std::sqrt((a - c) * (a - c) + 4.f * b * b));
-            score[y * sw + x] = e;
-            best = std::max(best, e);
-        }
+    for (int g = 0; g < gh; ++g) {
+        sumBlockColumns(dx + g * gw, dy + g * gw, sw, side, ringRow(g % side));
+        if (g < side - 1)
+            continue;
+        const int y = g - (side - 1);
+        best = std::max(best, scoreRow(side, score + y * sw, sw));
     }
     if (!(best > 0.f)) {
         return 0;

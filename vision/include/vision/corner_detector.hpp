@@ -43,6 +43,17 @@ public:
     int detect(ConstImageView gray, Rect area, Corner* out, int capacity) noexcept;
 
 private:
+    /// Ring slot `slot` (of 2r + 1): a gradient row's products summed over the block's columns,
+    /// the three planes xx, xy, yy one after the other (maxImage width apart).
+    std::int32_t* ringRow(int slot) noexcept;
+    /// The products dx dx, dx dy, dy dy of one gradient row summed over `side` columns, for
+    /// `width` scored pixels, into `out` (a ring slot).
+    void sumBlockColumns(const std::int16_t* dx, const std::int16_t* dy, int width, int side,
+                         std::int32_t* out) noexcept;
+    /// The smaller eigenvalue of the tensor summed over the ring's `side` rows, for `width`
+    /// pixels into `out`; returns the row's largest.
+    float scoreRow(int side, float* out, int width) noexcept;
+
     struct Candidate {
         float score;
         std::int32_t index;  ///< y * areaWidth + x within the clipped area
@@ -54,6 +65,8 @@ private:
     std::unique_ptr<std::int16_t[]> dy_;       ///< Sobel y over the area and a rim
     std::unique_ptr<float[]> score_;           ///< min eigenvalue per area pixel
     std::unique_ptr<Candidate[]> candidates_;  ///< local maxima above the quality threshold
+    std::unique_ptr<std::int32_t[]> ring_;     ///< block column sums of up to 7 gradient rows
+    std::unique_ptr<std::int32_t[]> tensor_;   ///< a score row's tensor sums (xx, xy, yy)
 };
 
 }  // namespace vision
