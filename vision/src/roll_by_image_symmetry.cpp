@@ -12,9 +12,7 @@
 //  - blurPasses 2 rather than 1 (with the row cue): CMU/MIT set A 3.55 -> 3.27 deg mean error
 //    over seeds 7, 11, 42, 3, 99, 123, 500 (B 3.49 -> 3.50); IMM unchanged; FGNet tracking roll
 //    +0.1 deg.
-//  - The mirror axis is searched in whole-pixel steps, then half-pixel ones beside the best,
-//    then continuously (golden section). Every half-pixel step (twice the sums) gave the same
-//    CMU/MIT roll but one face of set A seed 7 (3.43 -> 3.44 deg) and the same FGNet tracking.
+//  - The mirror axis is searched in half-pixel steps, then continuously (golden section).
 //  - The compared region keeps to the face, not the background at the patch's corners.
 //  - gradientSaturation: one strong edge (hair against a wall, a collar) must not outweigh the
 //    eyes, nose and mouth.
@@ -289,26 +287,16 @@ float RollByImageSymmetry::rowCoherence() const noexcept
 
 float RollByImageSymmetry::bestOverOffsets(bool continuous) noexcept
 {
-    // Whole-pixel steps of the axis, then the half-pixel steps either side of the best, then
-    // golden section between the neighbours of the best. The asymmetry is smooth in the offset
-    // (the planes are blurred twice), so the half steps between whole ones that are not the best
-    // are not the best either, and cost as much as the rest of the angle.
+    // Half-pixel steps of the axis, then golden section between the neighbours of the best.
     const float centre2 = static_cast<float>(n_ - 1);
     float best = INFINITY, bestA2 = centre2;
-    const auto consider = [&](int k) {
+    for (int k = -maxShift_; k <= maxShift_; ++k) {
         const float score = asymmetryAbout(centre2 + static_cast<float>(k));
         if (score < best) {
             best = score;
             bestA2 = centre2 + static_cast<float>(k);
         }
-    };
-    for (int k = -maxShift_; k <= maxShift_; k += 2)
-        consider(k);
-    const int whole = static_cast<int>(bestA2 - centre2);
-    if (whole > -maxShift_)
-        consider(whole - 1);
-    if (whole < maxShift_)
-        consider(whole + 1);
+    }
     if (continuous && maxShift_ > 0) {
         const GoldenSectionBracket g =
             goldenSection(std::max(centre2 - static_cast<float>(maxShift_), bestA2 - 1.f),
