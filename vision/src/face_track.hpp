@@ -31,6 +31,8 @@ struct Track {
     /// Started with its box reaching beyond the image: found by the part of it in view, which
     /// the cascade boxes off the face's centre (TrackVerifier::recentre).
     bool cameInAtEdge = false;
+    /// face.age when the image's symmetry last measured the roll (TrackVerifier::correctRoll).
+    int rollMeasuredAge = 0;
     FaceMotion motion;  ///< StaticFaceRule's record of how the face moved
 };
 

@@ -182,7 +182,7 @@ bool TrackVerifier::recentre(const ConstImageView& gray, Track& t, long& windows
     t.face.size = static_cast<float>(b.width) * unit;
     t.anchorSize = t.face.size;
     t.verifiedSinceAnchor = 0;
-    correctRoll(gray, t);
+    correctRoll(gray, t, grown);
     return true;
 }
 
@@ -270,16 +270,21 @@ void TrackVerifier::reanchor(const ConstImageView& gray, Track& t, const Rect& b
     t.face.size += 0.8f * (size - t.face.size);
     t.anchorSize = t.face.size;
     t.verifiedSinceAnchor = 0;
-    correctRoll(gray, t);
+    correctRoll(gray, t, false);
 }
 
-void TrackVerifier::correctRoll(const ConstImageView& gray, Track& t) noexcept
+void TrackVerifier::correctRoll(const ConstImageView& gray, Track& t, bool force) noexcept
 {
     // Tracking accumulates small rotation errors (corners on hair and outline pull the fit
     // towards no rotation): when a face is re-anchored, its roll is measured again from the
-    // image and the track moves halfway towards it.
+    // image and the track moves halfway towards it. Not more often than a re-anchoring comes
+    // due: a face at the image's edge (or one coming in) is re-anchored every frame, but its roll
+    // does not drift faster there, and the measurement costs more than the grouped scan.
     if (!imageRoll_ || options_.mode == FaceTrackingMode::Translation)
         return;
+    if (!force && t.face.age - t.rollMeasuredAge < std::max(options_.reanchorEvery, 1))
+        return;
+    t.rollMeasuredAge = t.face.age;
     const RollEstimate r = imageRoll_->estimate(gray, t.face.centre, t.face.size);
     if (r.confidence < kMinImageRollConfidence ||
         std::fabs(r.rollDegrees - t.face.rollDegrees) > 20.f)

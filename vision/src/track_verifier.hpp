@@ -54,7 +54,8 @@ private:
     bool verifyAt(const ConstImageView& gray, Track& t, float roll, long& windows) noexcept;
     void reanchor(const ConstImageView& gray, Track& t, const Rect& hit, float roll,
                   float side) noexcept;
-    void correctRoll(const ConstImageView& gray, Track& t) noexcept;
+    // The roll measured from the image again (at most every reanchorEvery frames unless `force`).
+    void correctRoll(const ConstImageView& gray, Track& t, bool force) noexcept;
 
     FaceTrackerOptions options_;
     FaceDetector detector_;
