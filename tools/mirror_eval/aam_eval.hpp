@@ -30,6 +30,7 @@ struct AamEvalOptions {
     std::string model;  ///< the .aam file a real fit loads
     std::string dataDir = "../shared/data";
     std::string predictor = kDlibShapePredictor;
+    std::string boxes;  ///< --frames: the HOG boxes kept between runs (box_cache.hpp)
     int start = 0;
     int maxFrames = 0;        ///< 0: all
     int upsample = 0;         ///< the HOG detector's pyramid_up passes

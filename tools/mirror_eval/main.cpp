@@ -204,6 +204,9 @@ int main(int argc, char** argv)
         ->capture_default_str();
     aamCmd->add_option("--max-frames", aam.maxFrames, "only the first N frames (0: all)");
     aamCmd->add_flag("--per-frame", aam.perFrame, "one line per frame");
+    aamCmd->add_option("--boxes", aam.boxes,
+                       "--frames: a file keeping the HOG boxes between runs (read, and written "
+                       "with the frames it lacked)");
 
     mirror_eval::PeopleEvalOptions people;
     CLI::App* peopleCmd = app.add_subcommand(

@@ -1,0 +1,34 @@
+#pragma once
+// The HOG boxes of an annotated run, kept in a file (`mirror-eval aam --boxes FILE`): the HOG
+// detector takes most of a run's time (about 4 of FGNet's 4.5 minutes), and its boxes do not
+// change with our fit. A text file, one line a frame: `<frame stem> <left> <top> <right>
+// <bottom>`, or `<frame stem> -` for a frame without a box on the truth face (stems without
+// spaces). A run detects only the frames the file lacks, and adds them to it.
+
+#include "head_fit_runner.hpp"
+
+#include <map>
+#include <optional>
+#include <string>
+
+namespace mirror_eval {
+
+class BoxCache {
+public:
+    /// Reads `path` when it exists (a malformed line: std::runtime_error naming the line); an
+    /// empty path keeps nothing.
+    explicit BoxCache(std::string path);
+
+    /// The kept answer for `stem`: none when the file lacks it, else the box or its absence.
+    std::optional<std::optional<FaceBoxPx>> find(const std::string& stem) const;
+    void put(const std::string& stem, const std::optional<FaceBoxPx>& box);
+    /// Writes the file when anything was put (to a temporary file, then renamed over it).
+    void save() const;
+
+private:
+    std::string path_;
+    std::map<std::string, std::optional<FaceBoxPx>> boxes_;
+    bool changed_ = false;
+};
+
+}  // namespace mirror_eval
