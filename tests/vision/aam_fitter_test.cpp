@@ -632,3 +632,51 @@ TEST(AamFitter, AppearanceParametersAllocateNothing)
 }
 
 }  // namespace
+
+namespace {
+
+/// A face with shape units of its own (not the mean head's), at the image's centre.
+SyntheticFace personFace(vision::AamStart& frontalBox)
+{
+    std::mt19937 random(3);
+    SyntheticFaceSpec spec = posedSpec(0.f, 0.f, 0.f, random);
+    for (std::size_t k = 0; k < spec.head.sigma.size(); ++k)
+        spec.head.sigma[k] += (k % 2 == 0 ? 0.05f : -0.05f);
+    SyntheticFace face = renderSyntheticFace(*demoModel(), spec, kWidth, kHeight);
+    frontalBox = face.box(0.f);
+    return face;
+}
+
+}  // namespace
+
+/// A restart (a track's fit started again from its box) keeps the person's shape units once they
+/// froze, and fits with them frozen; before they froze it is a new face's start.
+TEST(AamFitter, ARestartKeepsThePersonsFrozenShapeUnits)
+{
+    REQUIRE_DEMO_MODEL();
+    vision::AamFitter fitter(*demoModel());
+    vision::AamStart box;
+    const SyntheticFace face = personFace(box);
+
+    vision::AamFaceState young;
+    fitter.start(young, box);
+    ASSERT_TRUE(fitter.fit(face.image.view(), young).ok());
+    fitter.restart(young, box);
+    EXPECT_FALSE(young.shapeUnitsKept) << "not frozen yet: started as a new face";
+    EXPECT_EQ(young.head.sigma, vision::AamHead{}.sigma);
+
+    vision::AamFaceState known;
+    fitter.start(known, box);
+    for (int k = 0; k < fitter.options().fitsBeforeShapeFreeze; ++k)
+        ASSERT_TRUE(fitter.fit(face.image.view(), known).ok()) << "fit " << k;
+    const auto sigma = known.head.sigma;
+    EXPECT_NE(sigma, vision::AamHead{}.sigma);
+    fitter.restart(known, box);
+    EXPECT_TRUE(known.shapeUnitsKept);
+    EXPECT_EQ(known.fits, 0);
+    EXPECT_FALSE(known.headSet);
+    EXPECT_EQ(known.head.sigma, sigma);
+    const vision::AamFitResult fit = fitter.fit(face.image.view(), known);
+    EXPECT_TRUE(fit.ok()) << vision::aamFitOutcomeName(fit.outcome);
+    EXPECT_EQ(known.head.sigma, sigma) << "frozen through the restarted fit";
+}

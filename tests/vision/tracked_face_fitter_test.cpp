@@ -266,3 +266,43 @@ TEST(TrackedFaceFitter, FitsRejectedOnlyForTheirResidualCanStillMakeASignature)
         }
     }
 }
+
+/// §5.3.3 carries a fit from frame to frame; a carried fit whose residual rose (here: a dark hand
+/// over the mouth and chin) is fitted again from the tracker's box in the same frame, and the
+/// better of the two kept; a follow that holds is not fitted again.
+TEST(TrackedFaceFitter, AFollowWhoseResidualRoseIsFittedAgainFromItsBox)
+{
+    REQUIRE_DEMO_MODEL();
+    EXPECT_GT(vision::TrackedFaceFitterOptions{}.restartResidualRise, 0.f);
+    const SyntheticFace face = posedFace(5.f, 0.f, 0.f, 0.f);
+    SyntheticFace covered = posedFace(5.f, 0.f, 0.f, 0.f);
+    const vision::AamStart mesh = face.box(0.f);
+    vision::ImageView hand = covered.image.view();
+    const int x0 = static_cast<int>(mesh.centre.x - 0.5f * mesh.width);
+    for (int y = static_cast<int>(mesh.centre.y + 0.1f * mesh.width); y < hand.height; ++y)
+        for (int x = std::max(x0, 0); x < std::min(x0 + static_cast<int>(mesh.width), hand.width);
+             ++x)
+            hand.row(y)[x] = 30;
+
+    vision::TrackedFaceFitterOptions never;
+    never.restartResidualRise = 0.f;
+    vision::TrackedFaceFitter plain(*demoModel(), never), restarting(*demoModel());
+    const vision::TrackedFace tracked = trackedFace(6, mesh, never.placement);
+    for (int frame = 0; frame < 4; ++frame) {
+        const vision::ConstImageView image = frame < 3 ? face.image.view() : covered.image.view();
+        plain.process(image, {&tracked, 1});
+        restarting.process(image, {&tracked, 1});
+        const vision::FaceFit& a = plain.fits()[0];
+        const vision::FaceFit& b = restarting.fits()[0];
+        SCOPED_TRACE(frame);
+        if (frame < 3) {
+            ASSERT_TRUE(a.ok() && b.ok());
+            EXPECT_EQ(b.started, frame == 0) << "a follow that holds is not fitted again";
+            EXPECT_EQ(b.iterations, a.iterations);
+            EXPECT_EQ(b.fitError, a.fitError);
+        } else {
+            EXPECT_GT(b.iterations, a.iterations) << "fitted again from the box: both counted";
+            EXPECT_LE(b.fitError, a.fitError) << "the better of the two kept";
+        }
+    }
+}

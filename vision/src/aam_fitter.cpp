@@ -322,6 +322,22 @@ void AamFitter::start(AamFaceState& face, const AamStart& start) const noexcept
     aam::parametersOf(t, n, face.q.data());
 }
 
+bool AamFitter::shapeUnitsFrozen(const AamFaceState& face) const noexcept
+{
+    return face.shapeUnitsKept || face.fits >= options_.fitsBeforeShapeFreeze;
+}
+
+void AamFitter::restart(AamFaceState& face, const AamStart& at) const noexcept
+{
+    const bool keep = shapeUnitsFrozen(face);
+    const auto sigma = face.head.sigma;
+    start(face, at);
+    if (keep) {
+        face.head.sigma = sigma;
+        face.shapeUnitsKept = true;
+    }
+}
+
 void AamFitter::follow(AamFaceState& face, const AamStart& from, const AamStart& to) const noexcept
 {
     const aam::Tables& t = *tables_;
@@ -356,7 +372,7 @@ AamFitResult AamFitter::fit(ConstImageView grey, AamFaceState& face) noexcept
         chooseStart(grey, face);
     aam::shapeFromParameters(t, face.q.data(), face.p.data(), s.shape.data());
     bool similarityPhase = face.fits == 0;
-    const bool shapeFrozen = face.fits >= options_.fitsBeforeShapeFreeze;
+    const bool shapeFrozen = shapeUnitsFrozen(face);
     AamFaceState best = face;
     float bestError = 0.f, bestReferenceError = 0.f;
     double bestEnergy = 0.0;

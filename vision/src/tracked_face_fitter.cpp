@@ -97,14 +97,8 @@ void TrackedFaceFitter::fitFace(ConstImageView grey, const TrackedFace& face, Sl
                                 FaceFit& out) noexcept
 {
     const AamStart box = startFor(face);
-    if (slot.tracking) {
-        fitter_.follow(slot.state, slot.last, box);
-    } else {
-        fitter_.start(slot.state, box);
-        out.started = true;
-    }
+    const AamFitResult fit = fitTrack(grey, face, slot, box, out.started);
     slot.last = box;
-    const AamFitResult fit = fitter_.fit(grey, slot.state);
 
     out.fitted = true;
     out.outcome = fit.outcome;
@@ -132,16 +126,7 @@ void TrackedFaceFitter::fitFace(ConstImageView grey, const TrackedFace& face, Sl
                                   : fit.translation;
     out.faceSize = fit.scale * meshWidthUnits_ / options_.placement.widthOverBox;
 
-    // Where the mesh went against where the tracker says the face is.
-    const AamStart mesh = meshBox(fit);
-    const float dx = mesh.centre.x - box.centre.x, dy = mesh.centre.y - box.centre.y;
-    const float shift = std::sqrt(dx * dx + dy * dy);
-    // A turned head's mesh is narrower than the frontal start: compare the frontal width.
-    const float width = fit.scale * meshWidthUnits_;
-    out.plausible = std::isfinite(shift) && std::isfinite(width) &&
-                    shift <= options_.maxCentreShift * face.size &&
-                    width >= options_.minWidthRatio * box.width &&
-                    width <= options_.maxWidthRatio * box.width;
+    out.plausible = plausible(fit, box, face);
     // A failed fit is not carried on: the next frame starts again from the tracker's box. A
     // collecting signature may take a fit rejected only for a residual slightly too large (never
     // shown): the track then follows it, and it counts towards the shape units' freeze.
@@ -155,7 +140,57 @@ void TrackedFaceFitter::fitFace(ConstImageView grey, const TrackedFace& face, Sl
     if (nearMiss)
         ++slot.state.fits;
     slot.tracking = out.ok() || nearMiss;
+    if (out.ok())
+        slot.lastError = fit.fitError;
     updateSignature(grey, slot, out, out.ok() || nearMiss);
+}
+
+AamFitResult TrackedFaceFitter::fitTrack(ConstImageView grey, const TrackedFace& face, Slot& slot,
+                                         const AamStart& box, bool& started) noexcept
+{
+    started = !slot.tracking;
+    if (started)
+        fitter_.start(slot.state, box);
+    else
+        fitter_.follow(slot.state, slot.last, box);
+    const AamFitResult followed = fitter_.fit(grey, slot.state);
+    const bool followedOk = followed.ok() && plausible(followed, box, face);
+    // §5.3.3 carries a fit from frame to frame; a carried fit that slid keeps a residual just
+    // under the fitter's limit for many frames before it fails (FGNet: onto the jaw line as the
+    // mouth opens). A rise of the residual is the sign: the box's fit decides.
+    const float rise = options_.restartResidualRise;
+    if (started || rise <= 0.f ||
+        (followedOk && followed.fitError <= slot.lastError + rise))
+        return followed;
+    AamFaceState fresh = slot.state;
+    fitter_.restart(fresh, box);
+    AamFitResult again = fitter_.fit(grey, fresh);
+    const int iterations = followed.iterations + again.iterations;
+    const bool againOk = again.ok() && plausible(again, box, face);
+    if (!againOk || (followedOk && followed.fitError <= again.fitError)) {
+        AamFitResult kept = followed;
+        kept.iterations = iterations;
+        return kept;
+    }
+    slot.state = fresh;
+    started = true;
+    again.iterations = iterations;
+    return again;
+}
+
+bool TrackedFaceFitter::plausible(const AamFitResult& fit, const AamStart& box,
+                                  const TrackedFace& face) const noexcept
+{
+    // Where the mesh went against where the tracker says the face is.
+    const AamStart mesh = meshBox(fit);
+    const float dx = mesh.centre.x - box.centre.x, dy = mesh.centre.y - box.centre.y;
+    const float shift = std::sqrt(dx * dx + dy * dy);
+    // A turned head's mesh is narrower than the frontal start: compare the frontal width.
+    const float width = fit.scale * meshWidthUnits_;
+    return std::isfinite(shift) && std::isfinite(width) &&
+           shift <= options_.maxCentreShift * face.size &&
+           width >= options_.minWidthRatio * box.width &&
+           width <= options_.maxWidthRatio * box.width;
 }
 
 bool TrackedFaceFitter::collectSignature(int faceId, int fits) noexcept

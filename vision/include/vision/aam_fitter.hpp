@@ -97,6 +97,7 @@ struct AamFaceState {
     AamHead head{};
     bool headSet = false;  ///< head holds a fitted pose (else it is found from the 2D shape)
     int fits = 0;          ///< fits of this face so far (the shape units freeze after a few)
+    bool shapeUnitsKept = false;  ///< head.sigma is the person's, kept over a restart: frozen
 };
 
 enum class AamFitOutcome : std::uint8_t {
@@ -139,6 +140,9 @@ public:
 
     /// A new face: the mean shape placed on `start`, no pose yet.
     void start(AamFaceState& face, const AamStart& start) const noexcept;
+    /// A known face started afresh on `start` (as start()), keeping its shape units once they
+    /// froze: the person's proportions, fitted over its first frames, are not guessed again.
+    void restart(AamFaceState& face, const AamStart& start) const noexcept;
     /// A tracked face moved from box `from` to box `to` (the tracker's similarity): the face's
     /// shape and head moved with it, as the next fit's start.
     void follow(AamFaceState& face, const AamStart& from, const AamStart& to) const noexcept;
@@ -180,6 +184,7 @@ private:
     double objective(AamFaceState& face, float error, bool similarityPhase) noexcept;
     void buildSystem(ConstImageView grey, AamFaceState& face, bool similarityPhase,
                      bool shapeFrozen) noexcept;
+    bool shapeUnitsFrozen(const AamFaceState& face) const noexcept;
 
     std::unique_ptr<Tables> tables_;
     std::unique_ptr<Scratch> scratch_;

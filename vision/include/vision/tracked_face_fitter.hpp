@@ -52,6 +52,11 @@ struct TrackedFaceFitterOptions {
     /// never shown (FaceFit::ok() stays false). 0: only ok fits. 1.0: chosen on a development
     /// model (docs/people-evaluation.md: more photographs with a signature, better rank-1).
     float signatureMaxResidual = 1.f;
+    /// A followed fit whose residual rose by more than this over the track's last ok fit, or
+    /// that failed, is fitted again from the tracker's box in the same frame and the better of
+    /// the two kept: a mesh that slid (onto the hair, down the jaw) is caught before it fails,
+    /// and a failed follow does not lose the frame. 0: never. docs/aam-fit.md has the measure.
+    float restartResidualRise = 0.02f;
 };
 
 class TrackedFaceFitter {
@@ -87,12 +92,21 @@ private:
         bool seen = false;
         bool tracking = false;  ///< the last fit was ok: follow from it
         AamStart last{};        ///< the start box of the last frame (follow's `from`)
+        float lastError = 0.f;  ///< the residual of the last ok fit
         AamFaceState state{};
         FaceSignature signature{};  ///< the running mean of the track's signatures
         int signatureTarget = 0;    ///< fits to average (0: options().signatureFits)
     };
     Slot* slotFor(int faceId) noexcept;
     void fitFace(ConstImageView grey, const TrackedFace& face, Slot& slot, FaceFit& out) noexcept;
+    /// Follows the track's last fit to `box` (or starts there), refitting from the box when the
+    /// follow went wrong (options().restartResidualRise). `started`: the kept fit started afresh.
+    AamFitResult fitTrack(ConstImageView grey, const TrackedFace& face, Slot& slot,
+                          const AamStart& box, bool& started) noexcept;
+    /// The mesh of `fit` stayed on the tracker's `box` of `face` (whether the fitter accepted it
+    /// or not).
+    bool plausible(const AamFitResult& fit, const AamStart& box,
+                   const TrackedFace& face) const noexcept;
     void updateSignature(ConstImageView grey, Slot& slot, FaceFit& out, bool usable) noexcept;
 
     AamFitter fitter_;
