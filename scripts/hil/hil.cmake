@@ -20,7 +20,8 @@ if(MIRROR_BUILD_TESTS AND CMAKE_SYSTEM_PROCESSOR MATCHES "x86_64|AMD64" AND NOT 
     # the calibration: 1900 s); this is only the backstop above it. The module build (first run
     # only) adds ~20 s.
     TIMEOUT 2000
-    # The VM takes both cores: nothing else in parallel.
+    # The VM takes both cores: no other test of this ctest run beside it (scripts/dev test runs
+    # this label in a ctest of its own, beside the other phases).
     RUN_SERIAL TRUE)
   # The appliance booted without camera and panel, then both plugged in (README: HIL_SCENARIO).
   add_test(NAME hil.boot_without_devices
