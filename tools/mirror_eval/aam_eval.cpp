@@ -106,8 +106,8 @@ int runAnnotated(const AamEvalOptions& o, std::FILE* out)
                 ours.jawTruth.push_back(*opening);
             }
             if (o.perFrame && f)
-                std::fprintf(out, "frame %s ours nme=%.4f nme_all=%.4f\n", frame.stem().c_str(),
-                             f->inner, f->all);
+                std::fprintf(out, "frame %s ours nme=%.4f nme_all=%.4f iterations=%d\n",
+                             frame.stem().c_str(), f->inner, f->all, fit->iterations);
         }
         const std::vector<Eigen::Vector2d> landmarks = runDlib(dlib, grey, *box, peer);
         const CandidePoints dlibPoints68 = candidePointsOf(aam::ibugScheme(), landmarks);
