@@ -359,7 +359,7 @@ void AamFitter::follow(AamFaceState& face, const AamStart& from, const AamStart&
     }
 }
 
-AamFitResult AamFitter::fit(ConstImageView grey, AamFaceState& face) noexcept
+AamFitResult AamFitter::fit(ConstImageView grey, AamFaceState& face, bool fine) noexcept
 {
     const aam::Tables& t = *tables_;
     Scratch& s = *scratch_;
@@ -372,6 +372,11 @@ AamFitResult AamFitter::fit(ConstImageView grey, AamFaceState& face) noexcept
         chooseStart(grey, face);
     aam::shapeFromParameters(t, face.q.data(), face.p.data(), s.shape.data());
     bool similarityPhase = face.fits == 0;
+    const bool coarse = face.fits > 0 && !fine;
+    const float convergedPixels =
+        coarse ? options_.trackedConvergedPixels : options_.convergedPixels;
+    const float convergedDegrees =
+        coarse ? options_.trackedConvergedDegrees : options_.convergedDegrees;
     const bool shapeFrozen = shapeUnitsFrozen(face);
     AamFaceState best = face;
     float bestError = 0.f, bestReferenceError = 0.f;
@@ -443,7 +448,7 @@ AamFitResult AamFitter::fit(ConstImageView grey, AamFaceState& face) noexcept
                                                   std::abs(face.head.pitch - headBefore.pitch),
                                                   std::abs(face.head.yaw - headBefore.yaw)});
         if (similarityPhase) {
-            if (moved < options_.convergedPixels ||
+            if (moved < convergedPixels ||
                 iteration + 1 >= options_.maxSimilarityIterations) {
                 similarityPhase = false;
                 measured = false;  // the next state is measured against the new system's
@@ -451,7 +456,7 @@ AamFitResult AamFitter::fit(ConstImageView grey, AamFaceState& face) noexcept
             }
             continue;
         }
-        if (moved < options_.convergedPixels && turned < options_.convergedDegrees) {
+        if (moved < convergedPixels && turned < convergedDegrees) {
             result.outcome = AamFitOutcome::Converged;
             ++iteration;
             break;

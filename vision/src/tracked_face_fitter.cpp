@@ -153,7 +153,11 @@ AamFitResult TrackedFaceFitter::fitTrack(ConstImageView grey, const TrackedFace&
         fitter_.start(slot.state, box);
     else
         fitter_.follow(slot.state, slot.last, box);
-    const AamFitResult followed = fitter_.fit(grey, slot.state);
+    // §6: a fit that goes into the track's signature settles finely; the others need not (the
+    // next frame goes on from where they stop).
+    const int target = slot.signatureTarget > 0 ? slot.signatureTarget : options_.signatureFits;
+    const bool fine = slot.signature.samples < target;
+    const AamFitResult followed = fitter_.fit(grey, slot.state, fine);
     const bool followedOk = followed.ok() && plausible(followed, box, face);
     // §5.3.3 carries a fit from frame to frame; a carried fit that slid keeps a residual just
     // under the fitter's limit for many frames before it fails (FGNet: onto the jaw line as the
@@ -164,7 +168,7 @@ AamFitResult TrackedFaceFitter::fitTrack(ConstImageView grey, const TrackedFace&
         return followed;
     AamFaceState fresh = slot.state;
     fitter_.restart(fresh, box);
-    AamFitResult again = fitter_.fit(grey, fresh);
+    AamFitResult again = fitter_.fit(grey, fresh, fine);
     const int iterations = followed.iterations + again.iterations;
     const bool againOk = again.ok() && plausible(again, box, face);
     if (!againOk || (followedOk && followed.fitError <= again.fitError)) {

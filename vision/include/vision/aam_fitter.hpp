@@ -48,6 +48,12 @@ struct AamFitterOptions {
     /// convergedDegrees in the last iteration.
     float convergedPixels = 0.3f;
     float convergedDegrees = 0.3f;
+    /// The same for a face fitted before (AamFaceState::fits > 0; fit() unless `fine`): it
+    /// starts from the last frame's fit and the next frame goes on from where this one stops, so
+    /// it need not settle as finely (docs/aam-evaluation.md: FGNet 8.5 -> 5.8 iterations a frame,
+    /// about the same NME).
+    float trackedConvergedPixels = 1.f;
+    float trackedConvergedDegrees = 1.f;
     /// Verification: a fit whose projected-out appearance residual (rms, in units of the mean
     /// appearance's standard deviation) exceeds this is Rejected.
     float maxResidual = 0.8f;
@@ -147,8 +153,10 @@ public:
     /// shape and head moved with it, as the next fit's start.
     void follow(AamFaceState& face, const AamStart& from, const AamStart& to) const noexcept;
     /// One fit of `face` on `grey` (Gray8), from its state; the state keeps the result. A new
-    /// face (no fits yet) fits its similarity first, then everything (5.3.3).
-    AamFitResult fit(ConstImageView grey, AamFaceState& face) noexcept;
+    /// face (no fits yet) fits its similarity first, then everything (5.3.3). A face fitted
+    /// before settles to options().trackedConvergedPixels unless `fine` (a fit whose result is
+    /// kept beyond the frame, as a signature's).
+    AamFitResult fit(ConstImageView grey, AamFaceState& face, bool fine = false) noexcept;
 
     /// The appearance parameters of `face` in its fitted state on `grey` (§6; dissertation 6.2):
     /// the image warped to the mean shape by the state's shape (options().appearanceSampling),
