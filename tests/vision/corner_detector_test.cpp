@@ -140,9 +140,12 @@ TEST(CornerDetector, DetectDoesNotAllocate)
 }
 
 // The scores are the smaller eigenvalue of the tensor summed over the block pixel by pixel (the
-// definition): the detector sums it by rows, which in int32 is exact, so every corner and score
-// must be the definition's to the bit, for each block size and for areas at the image's border.
-TEST(CornerDetector, ScoresAreTheBlockSumsDefinitionBitForBit)
+// definition): the detector sums it by rows, which in int32 is exact, so every corner must be the
+// definition's and every score the definition's eigenvalue of the same sums, for each block size
+// and for areas at the image's border. The eigenvalue's float formula is rounded as the compiler
+// contracts it (fused multiply-adds on aarch64, not on x86-64 without -mfma), and it subtracts
+// two numbers of the size of the trace: the same to a few float roundings of the trace.
+TEST(CornerDetector, ScoresAreTheBlockSumsDefinition)
 {
     const int w = 97, h = 61;
     ImageBuffer img(w, h, vision::PixelFormat::Gray8);
@@ -188,7 +191,8 @@ TEST(CornerDetector, ScoresAreTheBlockSumsDefinitionBitForBit)
                 const float b = static_cast<float>(sxy);
                 const float c = static_cast<float>(syy);
                 const float e = 0.5f * (a + c - std::sqrt((a - c) * (a - c) + 4.f * b * b));
-                EXPECT_EQ(got[i].score, e) << "block " << block << " corner " << i;
+                EXPECT_NEAR(got[i].score, e, 4e-7f * (a + c))
+                    << "block " << block << " corner " << i;
                 if (i > 0) {
                     EXPECT_GE(got[i - 1].score, got[i].score);
                 }
