@@ -1,9 +1,10 @@
 #pragma once
 // The HOG boxes of an annotated run, kept in a file (`mirror-eval aam --boxes FILE`): the HOG
-// detector takes most of a run's time (about 4 of FGNet's 4.5 minutes), and its boxes do not
+// detector takes most of a run's time (35 of FGNet's 45 seconds here), and its boxes do not
 // change with our fit. A text file, one line a frame: `<frame stem> <left> <top> <right>
 // <bottom>`, or `<frame stem> -` for a frame without a box on the truth face (stems without
-// spaces). A run detects only the frames the file lacks, and adds them to it.
+// spaces). A run detects only the frames the file lacks, and adds them to it. Frames are known
+// by their stem alone: one file per sequence and --upsample.
 
 #include "head_fit_runner.hpp"
 

@@ -3,10 +3,11 @@
 // a fixed slot holding its AamFaceState: a new track (or one whose last fit failed) starts the
 // fit from the tracker's box and roll (AamFitter::start, placed as AamBoxPlacement says); a
 // track fitted well last frame follows the tracker's motion since then (AamFitter::follow) and
-// fits from there. A fit the fitter rejects, or whose mesh left the tracker's box, is reported not
-// ok (the face keeps the 2D pose) and the track starts afresh from its box next frame: a wrong fit
-// is never carried on. Every buffer is allocated by the constructor; process() never allocates
-// and never throws.
+// fits from there; when that fit fails or its residual rose, it is fitted again from the box in
+// the same frame (AamFitter::restart, the person's shape units kept) and the better fit kept. A
+// fit the fitter rejects, or whose mesh left the tracker's box, is reported not ok (the face keeps
+// the 2D pose) and the track starts afresh from its box next frame: a wrong fit is never carried
+// on. Every buffer is allocated by the constructor; process() never allocates and never throws.
 
 #include "vision/aam_fitter.hpp"
 #include "vision/aam_model.hpp"
@@ -55,7 +56,7 @@ struct TrackedFaceFitterOptions {
     /// A followed fit whose residual rose by more than this over the track's last ok fit, or
     /// that failed, is fitted again from the tracker's box in the same frame and the better of
     /// the two kept: a mesh that slid (onto the hair, down the jaw) is caught before it fails,
-    /// and a failed follow does not lose the frame. 0: never. docs/aam-fit.md has the measure.
+    /// and a failed follow does not lose the frame. 0: never. Measured: docs/aam-evaluation.md.
     float restartResidualRise = 0.02f;
 };
 
