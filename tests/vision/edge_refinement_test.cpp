@@ -118,6 +118,36 @@ TEST(EdgeRefinement, ChromaticityFindsTheEdgesSaturationDoesNotSee)
     EXPECT_LT(maxCornerError(plain.quad, both.quad), 0.2);
 }
 
+TEST(EdgeRefinement, ABrightnessStepMarksTheEdgeOfACardOnABackgroundOfItsOwnColour)
+{
+    // An orange card on a brighter orange ground: R, G, B all scaled by 1.6, so saturation and
+    // chromaticity are the same on both sides; only brightness changes at the card's edges.
+    const Colours ownColour = {{125.f, 62.f, 19.f}, {200.f, 99.f, 30.f}};
+    const Quad truth = {{{52.3f, 41.7f}, {181.6f, 55.2f}, {170.4f, 148.9f}, {45.1f, 131.3f}}};
+    const ImageBuffer img = render(truth, 240, 190, PixelFormat::RGB24, ownColour);
+    Quad guess = truth;
+    const float off[4][2] = {{3, 2}, {-2, 3}, {-3, -2}, {2, -3}};
+    for (int i = 0; i < 4; ++i)
+        guess[i] = {truth[i].x + off[i][0], truth[i].y + off[i][1]};
+    EdgeRefinementOptions o;
+    o.chromaticityStep = 0.2f;
+    EdgeRefinement r;
+    ASSERT_TRUE(refineQuad(img.view(), guess, o, r));
+    EXPECT_EQ(r.edgesFitted, 0) << "no colour cue sees these edges";
+    EXPECT_EQ(r.brightnessSamples, 0);
+    o.brightnessStep = 0.1f;
+    ASSERT_TRUE(refineQuad(img.view(), guess, o, r));
+    EXPECT_EQ(r.edgesFitted, 4);
+    EXPECT_GT(r.brightnessSamples, 0);
+    EXPECT_LT(maxCornerError(r.quad, truth), 0.5);
+    // Where a colour cue finds the edge, brightness is not asked.
+    const ImageBuffer grey = render(truth, 240, 190);
+    EdgeRefinement colour;
+    ASSERT_TRUE(refineQuad(grey.view(), guess, o, colour));
+    EXPECT_EQ(colour.edgesFitted, 4);
+    EXPECT_EQ(colour.brightnessSamples, 0);
+}
+
 TEST(EdgeRefinement, AGuidedEdgeKeepsItsLineWhenOnlySomethingElsesOutlineIsNear)
 {
     // The seed's top edge lies 3 px above the card's; a second, tilted "card" edge (a strip

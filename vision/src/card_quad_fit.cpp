@@ -24,10 +24,12 @@ float edgeLength(const Quad& q, int i) noexcept
 /// With `deep`, the wide pass starts its walks as deep inside the card as the refinement allows
 /// (0.35 of the shortest edge): the first step from there is the card's own edge, not the
 /// outline of something of its colour that joined the component and pushed the seed out.
+/// `brightness`: EdgeRefinementOptions::brightnessStep (0: the colour cues of §2 alone).
 void refineTwice(const ConstImageView& rgb, const Quad& seed, const CardTrackerOptions& o,
-                 float guide, QuadFit& fit, bool deep = false) noexcept
+                 float guide, QuadFit& fit, bool deep = false, float brightness = 0.f) noexcept
 {
     EdgeRefinementOptions eo;
+    eo.brightnessStep = brightness;
     eo.maxSeedDistance = guide;
     eo.normalsPerEdge = o.normalsPerEdge;
     eo.saturationGradient = o.saturationGradient;
@@ -218,6 +220,16 @@ QuadFit fitQuad(const ConstImageView& rgb, const Quad& seed, const QuadJudge& ju
     QuadFit f;
     bool unfoundEdge = false;
     refineTwice(rgb, seed, *judge.options, guide, f);
+    // Beyond §2: over a background of the card's own colour neither saturation nor chromaticity
+    // shows the card's edges, only brightness does. When the colour cues find fewer than three
+    // edges, the walks are made again with brightness as the last cue, and that fit is taken
+    // only when it finds all four (a brightness step is also a shadow or a pattern's edge).
+    if (f.refinement.edgesFitted < 3 && judge.options->brightnessStep > 0.f) {
+        QuadFit bright;
+        refineTwice(rgb, seed, *judge.options, guide, bright, false, judge.options->brightnessStep);
+        if (bright.refinement.edgesFitted == 4)
+            f = bright;
+    }
     // Found afresh (§2 future work: recovery), an edge in view that its seed's walks did not find
     // is the colour's guess: something of the card's colour joined the component there and the
     // hull's edge lies outside the card. Walked again from deep inside, the card's edge is the

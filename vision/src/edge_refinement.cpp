@@ -73,6 +73,31 @@ int chromaticityDeparture(const int ch[3], const int ref2[3]) noexcept
            std::abs(2 * ch[2] - ref2[2]);
 }
 
+/// The sub-pixel position of the edge whose strongest step is from m to m + 1 (see walk()):
+/// from the colours across it, pure card 2 steps before and pure background 3 steps after; -1
+/// when the transition runs off the walk (its position would be biased).
+float blendPosition(const int (*col)[3], int m, int n) noexcept
+{
+    const int first = m - 2, last = m + 3;  // pure card, pure background
+    if (first < 0 || last >= n)
+        return -1.f;
+    const float d0 = static_cast<float>(col[first][0] - col[last][0]);
+    const float d1 = static_cast<float>(col[first][1] - col[last][1]);
+    const float d2 = static_cast<float>(col[first][2] - col[last][2]);
+    const float den = d0 * d0 + d1 * d1 + d2 * d2;
+    if (den < 16.f * 16.f * 24.f * 24.f)  // colours closer than ~24 levels: no usable blend
+        return static_cast<float>(m) + 0.5f;
+    float card = 0.f;
+    for (int i = first + 1; i < last; ++i) {
+        const float f = (static_cast<float>(col[i][0] - col[last][0]) * d0 +
+                         static_cast<float>(col[i][1] - col[last][1]) * d1 +
+                         static_cast<float>(col[i][2] - col[last][2]) * d2) /
+                        den;
+        card += std::clamp(f, 0.f, 1.f);
+    }
+    return static_cast<float>(first) + 0.5f + card;
+}
+
 /// Walks one sample line: from (x, y) in steps of (dx, dy) (one of them 0, the other +-1) for at
 /// most `steps` pixels. Each step's saturation (and colour) is the mean over a short band of
 /// 2 * band + 1 pixels that follows the edge's direction (offset `slope` pixels along the walk per
@@ -90,10 +115,14 @@ int chromaticityDeparture(const int ch[3], const int ref2[3]) noexcept
 /// the background colour (3 steps after it), so the card's share summed over the transition is
 /// the edge's distance from the last pure card pixel. S itself is not monotonic across an edge
 /// between complementary colours (the blend is grey), so its gradient would only place the edge
-/// at half-pixel steps. Returns the offset (in steps from the start), or -1.
+/// at half-pixel steps. With `brightThreshold`, a walk on which neither cue marks an edge anywhere
+/// takes the first lasting departure of brightness instead (`byBrightness`): a card over a
+/// background of its own colour. Returns the offset (in steps from the start), or -1.
 float walk(const ConstImageView& rgb, int bpp, int x, int y, int dx, int dy, int steps, int band,
-           float slope, int threshold, int chromaThreshold) noexcept
+           float slope, int threshold, int chromaThreshold, int brightThreshold,
+           bool& byBrightness) noexcept
 {
+    byBrightness = false;
     // Saturation and colour in 1/16 units so the band mean keeps some fraction.
     int s[kMaxWalk];
     int col[kMaxWalk][3];
@@ -153,24 +182,26 @@ float walk(const ConstImageView& rgb, int bpp, int x, int y, int dx, int dy, int
         while (m + 2 < n && stepStrength(s, ch, m + 1, threshold, chromaThreshold) >
                                 stepStrength(s, ch, m, threshold, chromaThreshold))
             ++m;
-        const int first = m - 2, last = m + 3;  // pure card, pure background
-        if (first < 0 || last >= n)
-            return -1.f;  // the transition runs off the walk: its position would be biased
-        const float d0 = static_cast<float>(col[first][0] - col[last][0]);
-        const float d1 = static_cast<float>(col[first][1] - col[last][1]);
-        const float d2 = static_cast<float>(col[first][2] - col[last][2]);
-        const float den = d0 * d0 + d1 * d1 + d2 * d2;
-        if (den < 16.f * 16.f * 24.f * 24.f)  // colours closer than ~24 levels: no usable blend
-            return static_cast<float>(m) + 0.5f;
-        float card = 0.f;
-        for (int i = first + 1; i < last; ++i) {
-            const float f = (static_cast<float>(col[i][0] - col[last][0]) * d0 +
-                             static_cast<float>(col[i][1] - col[last][1]) * d1 +
-                             static_cast<float>(col[i][2] - col[last][2]) * d2) /
-                            den;
-            card += std::clamp(f, 0.f, 1.f);
-        }
-        return static_cast<float>(first) + 0.5f + card;
+        return blendPosition(col, m, n);
+    }
+    if (brightThreshold <= 0 || n < 2)
+        return -1.f;
+    // No colour cue anywhere on the walk: the first lasting departure of brightness from the
+    // start's (as for chromaticity: a departure, not a neighbour step, so noise does not count),
+    // placed at the strongest brightness step from there.
+    int lum[kMaxWalk];
+    for (int k = 0; k < n; ++k)
+        lum[k] = col[k][0] + col[k][1] + col[k][2];
+    const int lumRef2 = lum[0] + lum[1];
+    const int need = 2 * 3 * 16 * brightThreshold;  // 2x (two steps), 3 channels, 1/16 units
+    for (int k = 1; k + 1 < n; ++k) {
+        if (std::abs(2 * lum[k + 1] - lumRef2) < need)
+            continue;
+        int m = k;
+        while (m + 2 < n && std::abs(lum[m + 2] - lum[m + 1]) > std::abs(lum[m + 1] - lum[m]))
+            ++m;
+        byBrightness = true;
+        return blendPosition(col, m, n);
     }
     return -1.f;
 }
@@ -252,6 +283,10 @@ bool refineQuad(const ConstImageView& rgb, const Quad& quad, const EdgeRefinemen
         options.chromaticityStep > 0.f
             ? std::max(1, static_cast<int>(std::lround(options.chromaticityStep * 4080.f)))
             : 0;
+    const int brightThreshold =
+        options.brightnessStep > 0.f
+            ? std::max(1, static_cast<int>(std::lround(options.brightnessStep * 255.f)))
+            : 0;
     const int normals = std::clamp(options.normalsPerEdge, 2, kMaxNormalsPerEdge);
     // Never start past the middle of the card: the far edge would be found instead.
     const float inside = std::min(options.searchInside, 0.35f * shortest);
@@ -304,8 +339,10 @@ bool refineQuad(const ConstImageView& rgb, const Quad& quad, const EdgeRefinemen
             if (x < 0 || y < 0 || x >= rgb.width || y >= rgb.height)
                 continue;
             ++out.normals;
-            const float offset = walk(rgb, bpp, x, y, acrossRows ? dir : 0, acrossRows ? 0 : dir,
-                                      steps, options.band, slope, threshold, chromaThreshold);
+            bool byBrightness = false;
+            const float offset =
+                walk(rgb, bpp, x, y, acrossRows ? dir : 0, acrossRows ? 0 : dir, steps,
+                     options.band, slope, threshold, chromaThreshold, brightThreshold, byBrightness);
             if (offset < 0.f)
                 continue;
             const float pos = start + static_cast<float>(dir) * offset;
@@ -316,6 +353,7 @@ bool refineQuad(const ConstImageView& rgb, const Quad& quad, const EdgeRefinemen
                 std::fabs(nx * (p.x - a.x) + ny * (p.y - a.y)) > options.maxSeedDistance)
                 continue;
             pts[count++] = p;
+            out.brightnessSamples += byBrightness;
         }
         out.samples += count;
         Line2f line;

@@ -42,6 +42,15 @@ TEST(CardFailureModes, TheCardPassingNearAPatchOfItsColourDoesNotStretchToIt)
     expectHeld(runScenario("hard", 6, 200, 239), 1.0, 0.95);
 }
 
+// Over a part of the background of the card's own colour, brighter than the card, no colour cue
+// of §2 shows its edges (saturation and chromaticity are the same on both sides): 20 frames
+// were lost with "too few edge inliers". When the colour cues find fewer than three edges, the
+// walks fall back on brightness, and that fit is taken with all four edges.
+TEST(CardFailureModes, ACardDimmerThanABackgroundOfItsOwnColourIsFoundByItsBrightness)
+{
+    expectHeld(runScenario("hard", 8002, 60, 95, 150), 1.0, 0.95);
+}
+
 // Found afresh at rest (frame 0 trains with the card filling the view), the component of the
 // card's colour had something joined at one edge: the hull's edge there lay outside the card,
 // its walks found no edge, and the quad kept that edge from the colour (a corner 50 px off for

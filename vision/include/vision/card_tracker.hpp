@@ -66,6 +66,10 @@ struct CardTrackerOptions {
     float maxRecoveryAreaChange = 3.f;  ///< recovery: area within this factor of the last good
     unsigned shapeMemoryFrames = 45;  ///< after this many lost frames any plausible shape recovers
     float chromaticityStep = 0.2f;    ///< step 5: an edge also where chromaticity departs this much
+    /// Step 5, beyond §2: when the colour cues find fewer than three edges, an edge also where
+    /// brightness departs this much (mean of R, G, B over 255), the fit kept with all four edges
+    /// only (card_quad_fit.cpp); 0: never
+    float brightnessStep = 0.1f;
 };
 
 struct CardObservation {

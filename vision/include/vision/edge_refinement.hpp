@@ -13,8 +13,9 @@
 // mean over a short band along the edge, the sub-pixel position comes from the colour blend across
 // the edge, walks see only the current field of interlaced video, near-black pixels have their
 // saturation computed against a floor (kSaturationDarkFloor), optionally a change of chromaticity
-// marks an edge too, an edge whose inliers bunch on a short piece is not fitted, and a refinement
-// can be guided by where the shape model expects the edges.
+// marks an edge too and, where neither cue finds one, a change of brightness, an edge whose
+// inliers bunch on a short piece is not fitted, and a refinement can be guided by where the shape
+// model expects the edges.
 
 #include "vision/geometry.hpp"
 #include "vision/image.hpp"
@@ -35,6 +36,11 @@ struct EdgeRefinementOptions {
     /// Departure of chromaticity from the walk's start (L1 of r, g, b in 0..1) that marks the
     /// edge too; 0: saturation only
     float chromaticityStep = 0.f;
+    /// Beyond §2: a departure of brightness (the mean of R, G and B, over 255) from the walk's
+    /// start that marks the edge on a walk where neither saturation nor chromaticity marks one
+    /// anywhere (a card over a background of its own colour differs from it only in brightness,
+    /// which both cues ignore); 0: never
+    float brightnessStep = 0.f;
     /// An edge is fitted only when its inliers (and its part in view) span this share of it
     /// (at least 8 pixels): points bunched on a short piece do not fix its direction
     float minEdgeSpan = 0.1f;
@@ -56,6 +62,7 @@ struct EdgeRefinement {
     int samples = 0;      ///< edge points found
     int inliers = 0;      ///< of those, inliers of their edge's line
     int edgesFitted = 0;
+    int brightnessSamples = 0;  ///< edge points found by brightness alone (brightnessStep)
 };
 
 /// 8-bit saturation 255 (max - min) / max of a pixel's first three bytes (order-independent).
