@@ -52,6 +52,16 @@ ImageBuffer render(const Quad& card, int w, int h, PixelFormat format = PixelFor
     return img;
 }
 
+/// `truth` with each corner 2-3 px off, in a different direction each: a quad to refine.
+Quad offsetGuess(const Quad& truth)
+{
+    Quad guess = truth;
+    const float off[4][2] = {{3, 2}, {-2, 3}, {-3, -2}, {2, -3}};
+    for (int i = 0; i < 4; ++i)
+        guess[i] = {truth[i].x + off[i][0], truth[i].y + off[i][1]};
+    return guess;
+}
+
 double maxCornerError(const Quad& a, const Quad& b)
 {
     double e = 0;
@@ -76,10 +86,7 @@ TEST(EdgeRefinement, FindsTheTrueCornersFromAnOffsetQuad)
 {
     const Quad truth = {{{52.3f, 41.7f}, {181.6f, 55.2f}, {170.4f, 148.9f}, {45.1f, 131.3f}}};
     const ImageBuffer img = render(truth, 240, 190);
-    Quad guess = truth;
-    const float off[4][2] = {{3, 2}, {-2, 3}, {-3, -2}, {2, -3}};  // 2-4 px inside
-    for (int i = 0; i < 4; ++i)
-        guess[i] = {truth[i].x + off[i][0], truth[i].y + off[i][1]};
+    const Quad guess = offsetGuess(truth);  // 2-4 px inside
     EdgeRefinement r;
     ASSERT_TRUE(refineQuad(img.view(), guess, {}, r));
     EXPECT_EQ(r.edgesFitted, 4);
@@ -98,10 +105,7 @@ TEST(EdgeRefinement, ChromaticityFindsTheEdgesSaturationDoesNotSee)
     const Colours redOnOrange = {{190.f, 36.f, 44.f}, {220.f, 110.f, 30.f}};
     const Quad truth = {{{52.3f, 41.7f}, {181.6f, 55.2f}, {170.4f, 148.9f}, {45.1f, 131.3f}}};
     const ImageBuffer img = render(truth, 240, 190, PixelFormat::RGB24, redOnOrange);
-    Quad guess = truth;
-    const float off[4][2] = {{3, 2}, {-2, 3}, {-3, -2}, {2, -3}};
-    for (int i = 0; i < 4; ++i)
-        guess[i] = {truth[i].x + off[i][0], truth[i].y + off[i][1]};
+    const Quad guess = offsetGuess(truth);
     EdgeRefinementOptions o;
     EdgeRefinement r;
     ASSERT_TRUE(refineQuad(img.view(), guess, o, r));
@@ -125,10 +129,7 @@ TEST(EdgeRefinement, ABrightnessStepMarksTheEdgeOfACardOnABackgroundOfItsOwnColo
     const Colours ownColour = {{125.f, 62.f, 19.f}, {200.f, 99.f, 30.f}};
     const Quad truth = {{{52.3f, 41.7f}, {181.6f, 55.2f}, {170.4f, 148.9f}, {45.1f, 131.3f}}};
     const ImageBuffer img = render(truth, 240, 190, PixelFormat::RGB24, ownColour);
-    Quad guess = truth;
-    const float off[4][2] = {{3, 2}, {-2, 3}, {-3, -2}, {2, -3}};
-    for (int i = 0; i < 4; ++i)
-        guess[i] = {truth[i].x + off[i][0], truth[i].y + off[i][1]};
+    const Quad guess = offsetGuess(truth);
     EdgeRefinementOptions o;
     o.chromaticityStep = 0.2f;
     EdgeRefinement r;
