@@ -63,6 +63,11 @@ void TrackedFaceFitter::reset() noexcept
     count_ = 0;
 }
 
+int TrackedFaceFitter::signatureTargetOf(const Slot& slot) const noexcept
+{
+    return slot.signatureTarget > 0 ? slot.signatureTarget : options_.signatureFits;
+}
+
 TrackedFaceFitter::Slot* TrackedFaceFitter::slotFor(int faceId) noexcept
 {
     return vision::slotForFace(slots_, faceId);
@@ -130,7 +135,7 @@ void TrackedFaceFitter::fitFace(ConstImageView grey, const TrackedFace& face, Sl
     // A failed fit is not carried on: the next frame starts again from the tracker's box. A
     // collecting signature may take a fit rejected only for a residual slightly too large (never
     // shown): the track then follows it, and it counts towards the shape units' freeze.
-    const int target = slot.signatureTarget > 0 ? slot.signatureTarget : options_.signatureFits;
+    const int target = signatureTargetOf(slot);
     const float maxAngle = fitter_.options().maxAngleDegrees;
     const bool nearMiss =
         !out.ok() && out.plausible && slot.state.headSet &&
@@ -155,7 +160,7 @@ AamFitResult TrackedFaceFitter::fitTrack(ConstImageView grey, const TrackedFace&
         fitter_.follow(slot.state, slot.last, box);
     // §6: a fit that goes into the track's signature settles finely; the others need not (the
     // next frame goes on from where they stop).
-    const int target = slot.signatureTarget > 0 ? slot.signatureTarget : options_.signatureFits;
+    const int target = signatureTargetOf(slot);
     const bool fine = slot.signature.samples < target;
     const AamFitResult followed = fitter_.fit(grey, slot.state, fine);
     const bool followedOk = followed.ok() && plausible(followed, box, face);
@@ -201,7 +206,7 @@ bool TrackedFaceFitter::collectSignature(int faceId, int fits) noexcept
 {
     for (Slot& s : slots_)
         if (s.faceId == faceId && faceId != 0) {
-            const int target = s.signatureTarget > 0 ? s.signatureTarget : options_.signatureFits;
+            const int target = signatureTargetOf(s);
             s.signatureTarget = std::max(target, s.signature.samples) + std::max(fits, 0);
             return true;
         }
@@ -215,7 +220,7 @@ bool TrackedFaceFitter::collectSignature(int faceId, int fits) noexcept
 void TrackedFaceFitter::updateSignature(ConstImageView grey, Slot& slot, FaceFit& out,
                                         bool usable) noexcept
 {
-    const int target = slot.signatureTarget > 0 ? slot.signatureTarget : options_.signatureFits;
+    const int target = signatureTargetOf(slot);
     FaceSignature& sig = slot.signature;
     if (usable && slot.state.fits > fitter_.options().fitsBeforeShapeFreeze &&
         sig.samples < target) {

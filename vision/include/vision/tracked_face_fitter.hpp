@@ -99,6 +99,8 @@ private:
         int signatureTarget = 0;    ///< fits to average (0: options().signatureFits)
     };
     Slot* slotFor(int faceId) noexcept;
+    /// The fits a slot's signature averages (its own target, else options().signatureFits).
+    int signatureTargetOf(const Slot& slot) const noexcept;
     void fitFace(ConstImageView grey, const TrackedFace& face, Slot& slot, FaceFit& out) noexcept;
     /// Follows the track's last fit to `box` (or starts there), refitting from the box when the
     /// follow went wrong (options().restartResidualRise). `started`: the kept fit started afresh.
