@@ -52,6 +52,9 @@ ImageBuffer render(const Quad& card, int w, int h, PixelFormat format = PixelFor
     return img;
 }
 
+/// A card turned a little in depth and in the image (no edge along a row or column).
+constexpr Quad kSkewedCard = {{{52.3f, 41.7f}, {181.6f, 55.2f}, {170.4f, 148.9f}, {45.1f, 131.3f}}};
+
 /// `truth` with each corner 2-3 px off, in a different direction each: a quad to refine.
 Quad offsetGuess(const Quad& truth)
 {
@@ -84,7 +87,7 @@ TEST(EdgeRefinement, SaturationOfAPixel)
 
 TEST(EdgeRefinement, FindsTheTrueCornersFromAnOffsetQuad)
 {
-    const Quad truth = {{{52.3f, 41.7f}, {181.6f, 55.2f}, {170.4f, 148.9f}, {45.1f, 131.3f}}};
+    const Quad truth = kSkewedCard;
     const ImageBuffer img = render(truth, 240, 190);
     const Quad guess = offsetGuess(truth);  // 2-4 px inside
     EdgeRefinement r;
@@ -103,7 +106,7 @@ TEST(EdgeRefinement, ChromaticityFindsTheEdgesSaturationDoesNotSee)
     // A red card on an orange ground: both as saturated, and their blend too (no grey between
     // them), so saturation has no step at the card's edges; chromaticity does change there.
     const Colours redOnOrange = {{190.f, 36.f, 44.f}, {220.f, 110.f, 30.f}};
-    const Quad truth = {{{52.3f, 41.7f}, {181.6f, 55.2f}, {170.4f, 148.9f}, {45.1f, 131.3f}}};
+    const Quad truth = kSkewedCard;
     const ImageBuffer img = render(truth, 240, 190, PixelFormat::RGB24, redOnOrange);
     const Quad guess = offsetGuess(truth);
     EdgeRefinementOptions o;
@@ -127,7 +130,7 @@ TEST(EdgeRefinement, ABrightnessStepMarksTheEdgeOfACardOnABackgroundOfItsOwnColo
     // An orange card on a brighter orange ground: R, G, B all scaled by 1.6, so saturation and
     // chromaticity are the same on both sides; only brightness changes at the card's edges.
     const Colours ownColour = {{125.f, 62.f, 19.f}, {200.f, 99.f, 30.f}};
-    const Quad truth = {{{52.3f, 41.7f}, {181.6f, 55.2f}, {170.4f, 148.9f}, {45.1f, 131.3f}}};
+    const Quad truth = kSkewedCard;
     const ImageBuffer img = render(truth, 240, 190, PixelFormat::RGB24, ownColour);
     const Quad guess = offsetGuess(truth);
     EdgeRefinementOptions o;
