@@ -106,11 +106,22 @@ const char* unlikeTheCard(QuadFit& f, const QuadJudge& j) noexcept
     }
 
     // An edge without image evidence lying on the frame border: the card is leaving the view and
-    // that edge is unknowable.
-    for (int i = 0; i < 4; ++i)
-        if (!f.refinement.fitted[i] && nearBorder(f.raw[i], j.frame) &&
-            nearBorder(f.raw[(i + 1) % 4], j.frame))
+    // that edge is unknowable. One that runs out of view from inside it, not carried with the
+    // card, is the seed's line: the colour's hull clipped by the border, not the card's edge.
+    const float far = 0.35f * std::sqrt(std::max(f.area, 1.f));
+    auto outside = [&](Point2f p) {
+        return std::max({-p.x, -p.y, p.x - static_cast<float>(j.frame.width - 1),
+                         p.y - static_cast<float>(j.frame.height - 1)});
+    };
+    for (int i = 0; i < 4; ++i) {
+        if (f.refinement.fitted[i])
+            continue;
+        const Point2f a = f.refinement.quad[i], b = f.refinement.quad[(i + 1) % 4];
+        if (nearBorder(a, j.frame) && nearBorder(b, j.frame))
             return "card leaving the frame";
+        if (i != f.carried && std::max(outside(a), outside(b)) > far)
+            return "card leaving the frame";
+    }
     if (f.fill < o.minFill)
         return "component does not fill the quad";
     return nullptr;
