@@ -7,6 +7,7 @@
 #include "vision/frame_check_stage.hpp"
 #include "vision/pipeline.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <exception>
 #include <fstream>
@@ -74,7 +75,7 @@ std::vector<TrackedFrame> runCardTracker(const CardEvalOptions& o, std::size_t t
 namespace {
 
 void writePerFrame(const std::string& path, const std::vector<TruthRow>& truth,
-                   const std::vector<TrackedFrame>& tracked)
+                   const std::vector<TrackedFrame>& tracked, const CardEvalSettings& settings)
 {
     std::ofstream out(path);
     if (!out)
@@ -88,11 +89,9 @@ void writePerFrame(const std::string& path, const std::vector<TruthRow>& truth,
         } else {
             double err = -1.0;
             if (truth[i].hasCard) {
-                err = 0.0;
-                for (int k = 0; k < 4; ++k)
-                    err = std::max(
-                        err, std::hypot(static_cast<double>(f.quad[k].x) - truth[i].quad[k].x,
-                                        static_cast<double>(f.quad[k].y) - truth[i].quad[k].y));
+                double e[4];
+                matchedCornerErrors(f.quad, truth[i].quad, settings.cornerTiePx, e);
+                err = *std::max_element(e, e + 4);
             }
             std::snprintf(line, sizeof line, "%zu,1,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%s,\n",
                           i, f.quad[0].x, f.quad[0].y, f.quad[1].x, f.quad[1].y, f.quad[2].x,
@@ -115,7 +114,7 @@ int runCardEval(const CardEvalOptions& o, std::FILE* out, std::FILE* err)
         const std::vector<TrackedFrame> tracked =
             runCardTracker(o, truth.size(), settings.frameSize);
         if (!o.perFrameCsv.empty())
-            writePerFrame(o.perFrameCsv, truth, tracked);
+            writePerFrame(o.perFrameCsv, truth, tracked, settings);
         const CardMetrics m = computeCardMetrics(truth, tracked, settings);
         std::fprintf(out, "card eval: %s (%dx%d), truth %s; frame 0 trains (central %.2f)%s\n",
                      o.video.c_str(), settings.frameSize.width, settings.frameSize.height,

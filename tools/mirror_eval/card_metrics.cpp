@@ -53,6 +53,29 @@ double rmsDeviation(const std::vector<TrackedFrame>& tracked, int first, int las
 
 }  // namespace
 
+void matchedCornerErrors(const vision::Quad& found, const vision::Quad& truth, float tiePx,
+                         double errors[4]) noexcept
+{
+    auto sum = [](vision::Point2f p) { return static_cast<double>(p.x) + p.y; };
+    double worst = std::numeric_limits<double>::infinity();
+    for (int start = 0; start < 4; ++start) {
+        // The truth's own labelling starts at its corner 0; another start only on a tie.
+        if (start != 0 && sum(truth[start]) > sum(truth[0]) + tiePx)
+            continue;
+        double e[4], largest = 0.0;
+        for (int k = 0; k < 4; ++k) {
+            const vision::Point2f t = truth[(start + k) % 4];
+            e[k] = std::hypot(static_cast<double>(found[k].x) - t.x,
+                              static_cast<double>(found[k].y) - t.y);
+            largest = std::max(largest, e[k]);
+        }
+        if (largest < worst) {
+            worst = largest;
+            std::copy(e, e + 4, errors);
+        }
+    }
+}
+
 CardMetrics computeCardMetrics(const std::vector<TruthRow>& truth,
                                const std::vector<TrackedFrame>& tracked, const CardEvalSettings& s)
 {
@@ -93,10 +116,11 @@ CardMetrics computeCardMetrics(const std::vector<TruthRow>& truth,
         }
         ++m.measuredFrames;
         bool within = true;
-        for (int k = 0; k < 4; ++k) {
-            const double e = std::hypot(f.quad[k].x - t.quad[k].x, f.quad[k].y - t.quad[k].y);
-            errors.push_back(e);
-            within = within && e <= s.withinPx;
+        double e[4];
+        matchedCornerErrors(f.quad, t.quad, s.cornerTiePx, e);
+        for (double ek : e) {
+            errors.push_back(ek);
+            within = within && ek <= s.withinPx;
         }
         m.withinFrames += within;
     }

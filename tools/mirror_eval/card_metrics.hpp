@@ -10,6 +10,9 @@
 //  - *fully visible*: all 4 corners inside the image (recovery is timed from there).
 // Corner errors are Euclidean distances between matching corners (both clockwise from the
 // top-left), pooled over the 4 corners of every scored frame in which the tracker tracks.
+// "Top-left" is the corner with the smallest x + y; when two corners of the truth tie on it (a
+// card turned 45 degrees) either may be the first, and the tracker's labelling is matched to the
+// one nearer its quad (matchedCornerErrors).
 
 #include "truth_file.hpp"
 #include "vision/geometry.hpp"
@@ -31,6 +34,7 @@ struct CardEvalSettings {
     vision::Size frameSize;
     int firstScored = 1;            ///< frame 0 trains
     float withinPx = 3.0f;          ///< "all corners within" threshold
+    float cornerTiePx = 6.0f;       ///< truth first corners this close in x + y are a tie
     int restSettleFrames = 5;       ///< frames at the start of a static stretch not counted
     int minRestFrames = 5;          ///< frames a static stretch needs (after settling)
     float restTolerancePx = 0.01f;  ///< truth corners moving less than this are at rest
@@ -60,6 +64,12 @@ struct CardMetrics {
     double jitterPx = 0.0;  ///< mean over static stretches of the RMS corner deviation
     double maxJitterPx = 0.0;
 };
+
+/// Distances from each corner of `found` to its truth corner, both clockwise from the corner with
+/// the smallest x + y. When another truth corner's x + y is within `tiePx` of that smallest, the
+/// truth is also labelled from it and the labelling with the smaller largest error is used.
+void matchedCornerErrors(const vision::Quad& found, const vision::Quad& truth, float tiePx,
+                         double errors[4]) noexcept;
 
 /// Scores `tracked` (one entry per frame) against `truth` (same length; throws
 /// std::invalid_argument otherwise).

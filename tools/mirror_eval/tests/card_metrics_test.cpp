@@ -185,3 +185,24 @@ TEST(CardMetrics, LengthsMustAgree)
 }
 
 }  // namespace
+
+TEST(CardMetrics, ACardTurned45DegreesMayBeLabelledFromEitherTiedCorner)
+{
+    // A diamond: the top and left corners have the same x + y, so "clockwise from the top-left"
+    // may start at either. The tracker starting at the other one is not 200 px off.
+    const vision::Quad diamond = {vision::Point2f{300, 100}, vision::Point2f{400, 200},
+                                  vision::Point2f{300, 300}, vision::Point2f{200, 200}};
+    const vision::Quad fromLeft = {diamond[3], diamond[0], diamond[1], diamond[2]};
+    double e[4];
+    mirror_eval::matchedCornerErrors(shifted(fromLeft, 1.f, 0.f), diamond, 6.f, e);
+    for (double ek : e)
+        EXPECT_NEAR(ek, 1.0, 1e-9);
+    const auto m = computeCardMetrics({card(0, diamond), card(1, diamond)},
+                                      {nothing(), at(fromLeft)}, settings());
+    EXPECT_EQ(m.withinFrames, 1);
+
+    // Without a tie the truth's labelling stands: a quad labelled from another corner is wrong.
+    const vision::Quad rotated = {kQuad[1], kQuad[2], kQuad[3], kQuad[0]};
+    mirror_eval::matchedCornerErrors(rotated, kQuad, 6.f, e);
+    EXPECT_NEAR(e[0], 200.0, 1e-9);
+}
