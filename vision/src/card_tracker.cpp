@@ -104,7 +104,10 @@ ColorBounds CardTracker::State::searchBounds() const noexcept
 /// else of the card's colour); otherwise the largest one.
 Component CardTracker::State::selectCard(int largestArea) noexcept
 {
-    constexpr unsigned kRecentFrames = 3;
+    // A third of a second: about as long as an arm passing in front of the card hides it. Cut in
+    // pieces by the arm, the card is smaller than a patch of its colour elsewhere, which the
+    // largest component would take for it (and then follow). Later the card may be anywhere.
+    constexpr unsigned kRecentFrames = 10;
     if (shape.haveLast() && obs.framesSinceGood <= kRecentFrames)
         return labeler.selectNear(shape.expectedBounds(obs.framesSinceGood),
                                   std::max(16, largestArea / 20));

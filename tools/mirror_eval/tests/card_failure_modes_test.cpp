@@ -198,6 +198,19 @@ TEST(CardFailureModes, AnEdgeOfTheHullRunningOutOfViewIsNotTakenForTheCards)
     EXPECT_EQ(run.metrics.falseTrackingFrames, 0);
 }
 
+// An arm across the card hid it for four frames (half out of view at the top); found again in
+// the fifth, the card was two pieces either side of the arm, each smaller than a patch of its
+// colour across the frame, and the largest component (the patch) was taken for it and followed
+// for the rest of the sequence (500 px off once the card was back in view). The pieces where the
+// card was lost are looked for first, for a third of a second.
+TEST(CardFailureModes, AfterAnArmHidItTheCardIsLookedForWhereItWasNotInAPatchOfItsColour)
+{
+    const TrackerRun run = runScenario("hard", 8010, 1, 100, 150);
+    EXPECT_LE(run.metrics.maxErrPx, 6.0) << misses(run);
+    EXPECT_LE(run.metrics.lostFrames, 4) << misses(run);
+    EXPECT_EQ(run.metrics.falseTrackingFrames, 0);
+}
+
 // A card in front of something as saturated as itself and of a near hue (a red card on an
 // orange wall): no saturation step anywhere around it (not even the grey of a blend between
 // complementary colours), so step 5 found too few edge points in every frame.
