@@ -37,8 +37,10 @@ void refineTwice(const ConstImageView& rgb, const Quad& seed, const CardTrackerO
     eo.inlierDistance = o.inlierDistance;
     const float scale = std::sqrt(std::max(quadArea(seed), 1.f));
     eo.searchInside = eo.searchOutside = std::clamp(o.coarseSearch * scale, 6.f, 48.f);
-    if (deep)
-        eo.searchInside = scale;  // edge_refinement caps it at 0.35 of the shortest edge
+    if (deep) {
+        eo.searchInside = scale;
+        eo.deepFraction = 0.45f;
+    }
     refineQuad(rgb, seed, eo, fit.refinement);
     fit.raw = canonicalOrder(fit.refinement.quad);
     eo.searchInside = eo.searchOutside = o.fineSearch;

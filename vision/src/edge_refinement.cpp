@@ -206,6 +206,15 @@ float walk(const ConstImageView& rgb, int bpp, int x, int y, int dx, int dy, int
     return -1.f;
 }
 
+/// How far the quad reaches inward from edge `e` (outward normal nx, ny): its farthest corner.
+float depthAcross(const Quad& q, int e, float nx, float ny) noexcept
+{
+    float deepest = 0.f;
+    for (const Point2f& p : q)
+        deepest = std::max(deepest, nx * (q[e].x - p.x) + ny * (q[e].y - p.y));
+    return deepest;
+}
+
 /// Liang-Barsky: narrows [t0, t1] to the part of a + t (ex, ey) inside [0, maxX] x [0, maxY].
 void clipToFrame(Point2f a, float ex, float ey, float maxX, float maxY, float& t0,
                  float& t1) noexcept
@@ -289,7 +298,6 @@ bool refineQuad(const ConstImageView& rgb, const Quad& quad, const EdgeRefinemen
             : 0;
     const int normals = std::clamp(options.normalsPerEdge, 2, kMaxNormalsPerEdge);
     // Never start past the middle of the card: the far edge would be found instead.
-    const float inside = std::min(options.searchInside, 0.35f * shortest);
     const float outside = options.searchOutside;
 
     for (int e = 0; e < 4; ++e) {
@@ -298,6 +306,10 @@ bool refineQuad(const ConstImageView& rgb, const Quad& quad, const EdgeRefinemen
         const float len = std::hypot(ex, ey);
         // Outward normal of a clockwise-on-screen polygon: (ey, -ex) / len.
         const float nx = ey / len, ny = -ex / len;
+        const float inside = std::min(options.searchInside,
+                                      options.deepFraction > 0.f
+                                          ? options.deepFraction * depthAcross(quad, e, nx, ny)
+                                          : 0.35f * shortest);
         const bool acrossRows = std::fabs(nx) >= std::fabs(ny);  // near-vertical edge
         const float along = acrossRows ? std::fabs(nx) : std::fabs(ny);
         const int dir = (acrossRows ? nx : ny) > 0.f ? 1 : -1;

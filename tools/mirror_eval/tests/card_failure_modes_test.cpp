@@ -211,6 +211,18 @@ TEST(CardFailureModes, AfterAnArmHidItTheCardIsLookedForWhereItWasNotInAPatchOfI
     EXPECT_EQ(run.metrics.falseTrackingFrames, 0);
 }
 
+// Found afresh beside a background of nearly its colour (a stadium's blue crowd), the colour's
+// hull reached 120 px past the card's right edge; the walks from deep inside, at most 0.35 of
+// the hull's shortest edge, still started outside the card, so the card was refused ("an edge
+// in view not found") for its first 21 frames. They start up to 0.45 of the hull's depth now.
+TEST(CardFailureModes, ACardBesideABackgroundOfNearlyItsColourIsFoundFromDeepInside)
+{
+    const TrackerRun run = runScenario("hard", 7001, 1, 20, 150);
+    EXPECT_LE(run.metrics.lostFrames, 3) << misses(run);
+    EXPECT_LE(run.metrics.maxErrPx, 6.0) << misses(run);
+    EXPECT_EQ(run.metrics.falseTrackingFrames, 0);
+}
+
 // A card in front of something as saturated as itself and of a near hue (a red card on an
 // orange wall): no saturation step anywhere around it (not even the grey of a blend between
 // complementary colours), so step 5 found too few edge points in every frame.

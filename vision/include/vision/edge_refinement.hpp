@@ -28,6 +28,10 @@ struct EdgeRefinementOptions {
     float saturationGradient = 0.12f;  ///< S step (S in 0..1) that marks the edge
     float searchInside = 8.f;          ///< walk starts this far inside the edge (pixels, normal)
     float searchOutside = 8.f;         ///< and ends this far outside
+    /// Walks start at most 0.35 of the shortest edge inside (never past the card's middle: the
+    /// far edge would be found); when > 0, at most this share of the quad's depth from each
+    /// edge instead (a seed much wider than the card, one edge far outside it)
+    float deepFraction = 0.f;
     float inlierDistance = 1.0f;       ///< RANSAC inlier band (pixels)
     int ransacIterations = 80;
     float minInlierShare = 0.4f;  ///< an edge needs this share of its sample lines as inliers
