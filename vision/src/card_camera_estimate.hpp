@@ -1,0 +1,63 @@
+#pragma once
+// CardCameraEstimate: the camera's focal length and the card's aspect in 3D, estimated over the
+// frames whose quad was fitted on all four edges (card_rectangle_3d.hpp), and the hidden edge of a
+// quad with three edges fitted placed with them. Beyond the dissertation (§2 step 5 fits lines in
+// the image; §2 future work, recovery from the shape model). Private to vision/src.
+//
+// The principal point is not measured: two places are weighed, the image's centre (a lens centred
+// on the sensor) and the image of the card's centre (the camera's axis through the card, as
+// cardgen renders it: its card poses are projected about the card's centre, then moved in the
+// image). Each keeps its own least-squares focal length; the one whose quads agree on one focal
+// length (the smaller residual) is used.
+
+#include "vision/edge_refinement.hpp"
+#include "vision/geometry.hpp"
+#include "vision/image.hpp"
+
+#include "card_rectangle_3d.hpp"
+
+namespace vision {
+
+class CardCameraEstimate {
+public:
+    void reset() noexcept { *this = CardCameraEstimate{}; }
+
+    /// A quad fitted on all four edges, in a frame of `frame`.
+    void measure(const Quad& q, Size frame) noexcept;
+
+    /// Enough quads agree on a focal length and an aspect.
+    bool trusted() const noexcept;
+    /// The focal length (pixels) and the card's long side over its short side, of the principal
+    /// point used.
+    double focal() const noexcept;
+    double aspect() const noexcept;
+    /// The principal point is the card's centre (else the image's).
+    bool principalAtCard() const noexcept;
+
+    /// With exactly one edge of `r` not fitted, that edge placed so the quad is the image of a
+    /// rectangle of the card's aspect (its long side along whichever pair puts the quad nearer
+    /// `expected`, the shape model's quad for this frame) seen with the focal length. `r.lines` and
+    /// `r.quad` are updated. False (r unchanged) when not trusted or degenerate.
+    bool placeHiddenEdge(const Quad& expected, EdgeRefinement& r) const noexcept;
+
+private:
+    /// One principal point's least squares a f^2 = b (forgetting old frames) and its aspect.
+    struct Hypothesis {
+        double aa = 0.0, ab = 0.0, bb = 0.0;
+        double logAspect = 0.0, aspectWeight = 0.0;
+        double focalSquared() const noexcept { return aa > 0.0 ? ab / aa : 0.0; }
+        /// Residual over explained: how far the quads disagree on one focal length.
+        double disagreement() const noexcept;
+    };
+    void add(Hypothesis& h, const Quad& q, Point2f principal) noexcept;
+    const Hypothesis& used() const noexcept;
+    bool trusted(const Hypothesis& h) const noexcept;
+    bool place(const Line2f lines[4], int k, double ratio, Point2f principal, Point2f inside,
+               Point2f& p0, Point2f& p1) const noexcept;
+
+    Hypothesis imageCentre_, cardCentre_;
+    double scale_ = 1.0;  // the frame's larger side: a and b of order 1
+    Point2f centre_{};
+};
+
+}  // namespace vision
