@@ -166,6 +166,26 @@ bool hiddenEdgeOutline(const QuadJudge& judge, EdgeRefinement& r) noexcept
     return true;
 }
 
+/// Beyond §2 step 5: with three edges fitted, the hidden one placed so the quad is the image of
+/// the card in 3D (CardCameraEstimate), when the focal length and the card's aspect are trusted
+/// and the placed edge is not wholly out of view (an edge out of view is the card leaving it).
+bool placedInDepth(const QuadJudge& judge, EdgeRefinement& r) noexcept
+{
+    if (!judge.camera)
+        return false;
+    const Quad& expected = judge.predicted ? *judge.predicted : *judge.measured;
+    EdgeRefinement placed = r;
+    if (!judge.camera->placeHiddenEdge(expected, placed))
+        return false;
+    int k = 0;
+    while (r.fitted[k])
+        ++k;
+    if (nearBorder(placed.quad[k], judge.frame) && nearBorder(placed.quad[(k + 1) % 4], judge.frame))
+        return false;
+    r = placed;
+    return true;
+}
+
 }  // namespace
 
 float quadArea(const Quad& q) noexcept
@@ -268,7 +288,10 @@ QuadFit fitQuad(const ConstImageView& rgb, const Quad& seed, const QuadJudge& ju
         int k = 0;
         while (f.refinement.fitted[k])
             ++k;
-        if (carryHiddenEdge(*judge.measured, judge.frame, f.refinement)) {
+        if (placedInDepth(judge, f.refinement)) {
+            f.raw = canonicalOrder(f.refinement.quad);
+            f.carried = k;
+        } else if (carryHiddenEdge(*judge.measured, judge.frame, f.refinement)) {
             f.raw = canonicalOrder(f.refinement.quad);
             f.carried = k;
         } else if (judge.predicted && predictHiddenEdge(*judge.predicted, judge.predictedGuide,

@@ -5,6 +5,7 @@
 // seed is the colour's coarse quad (§2 step 4) or the quad the shape model predicts
 // (card_shape_model.hpp). Also the small quad helpers the tracker shares. Private to vision/src.
 
+#include "card_camera_estimate.hpp"
 #include "vision/card_tracker.hpp"
 #include "vision/edge_refinement.hpp"
 #include "vision/geometry.hpp"
@@ -46,6 +47,9 @@ struct QuadJudge {
     float predictedGuide = 0.f;  ///< how far the card's edges may be from `predicted`
     /// While tracking, the last frame's edge without evidence (two corners), or null
     const Point2f* hidden = nullptr;
+    /// The focal length and the card's aspect from the quads measured on all four edges: a hidden
+    /// edge is placed so the quad is the image of the card in 3D (CardCameraEstimate), or null
+    const CardCameraEstimate* camera = nullptr;
 };
 
 struct QuadFit {
@@ -56,7 +60,8 @@ struct QuadFit {
     float inlierRatio = 0.f;  ///< edge inliers per sample line
     float shape = 1.f;        ///< 0..1: likeness to the last quad seen whole
     float fill = 0.f;         ///< component pixels per quad pixel
-    int carried = -1;  ///< the edge without evidence carried with the card (carryHiddenEdge), or -1
+    int carried = -1;  ///< the edge without evidence carried with the card (carryHiddenEdge or the
+                    ///< card in 3D, CardCameraEstimate), or -1
     const char* why = "degenerate component";  ///< null when plausible
 };
 

@@ -58,6 +58,7 @@ struct CardTracker::State {
     Quad filterOrder{};  // the filters' corners in their own (stable) order
     bool filtering = false;
     CardShapeModel shape;
+    CardCameraEstimate camera;  // the focal length and the card's aspect (the card in 3D)
     CardColorModel recent;  // the model of the last tracked frame (adapted to its light)
 
     void resetTrack() noexcept
@@ -69,6 +70,7 @@ struct CardTracker::State {
         current = trained;
         filtering = false;
         shape.reset();
+        camera.reset();
         recent = CardColorModel{};
         difference.forget();
         std::memset(mask.view().data, 0, mask.bytes());
@@ -187,6 +189,7 @@ QuadFit CardTracker::State::fitCard(const ConstImageView& rgb, const Quad* coars
     judge.predicted = tracking && haveShape ? &predicted : nullptr;
     judge.predictedGuide = shape.edgeGuide(missed);
     judge.hidden = tracking && haveShape ? shape.lastHidden() : nullptr;
+    judge.camera = tracking ? &camera : nullptr;
     QuadFit best;
     if (coarse)
         best = fitQuad(rgb, *coarse, judge);
@@ -226,6 +229,8 @@ void CardTracker::State::remember(const QuadFit& fit, unsigned missed) noexcept
     for (const Point2f& p : fit.raw)
         whole = whole && !nearBorder(p, size);
     shape.track(fit.raw, fit.area, fit.aspect, missed, whole, fit.refinement.edgesFitted == 4);
+    if (fit.refinement.edgesFitted == 4)
+        camera.measure(fit.raw, size);
     // The edge without evidence (under a hand), for the next frame's fit (hiddenEdgeOutline).
     int k = 0;
     while (k < 3 && fit.refinement.fitted[k])
