@@ -235,12 +235,37 @@ void clipToFrame(Point2f a, float ex, float ey, float maxX, float maxY, float& t
     }
 }
 
+/// The standard error of a least-squares line's angle over its `n` inliers: the residuals' standard
+/// deviation (at least a tenth of a pixel: the walks' positions are whole pixels) over the root of
+/// their squared spread along the line about its mean.
+float angleError(const Point2f* pts, int count, const std::uint8_t* isInlier, const Line2f& line,
+                 int n) noexcept
+{
+    float mean = 0.f;
+    for (int k = 0; k < count; ++k)
+        if (isInlier[k])
+            mean += line.ny * pts[k].x - line.nx * pts[k].y;
+    mean /= static_cast<float>(n);
+    float residual = 0.f, spread = 0.f;
+    for (int k = 0; k < count; ++k)
+        if (isInlier[k]) {
+            const float d = line.distance(pts[k]),
+                        at = line.ny * pts[k].x - line.nx * pts[k].y - mean;
+            residual += d * d;
+            spread += at * at;
+        }
+    const float sigma =
+        std::max(std::sqrt(residual / static_cast<float>(std::max(n - 2, 1))), 0.1f);
+    return sigma / std::sqrt(std::max(spread, 1.f));
+}
+
 /// The edge's line from its points (outward normal of the input edge (nx, ny)): RANSAC, then
 /// the checks that it is the edge's: enough inliers, spread along the edge over `minSpan` pixels
 /// (points bunched on a short piece do not fix its direction), and, when guided, not turned away
-/// from the expected edge. Returns the inlier count, 0 when not fitted.
+/// from the expected edge. Returns the inlier count, 0 when not fitted. `turnSigma`: the line's
+/// angle standard error (radians), the inliers' residual over their spread along the line.
 int fitEdge(const Point2f* pts, int count, float nx, float ny, float minSpan, int normals,
-            const EdgeRefinementOptions& o, Line2f& line) noexcept
+            const EdgeRefinementOptions& o, Line2f& line, float& turnSigma) noexcept
 {
     if (count < 3)
         return 0;
@@ -258,6 +283,7 @@ int fitEdge(const Point2f* pts, int count, float nx, float ny, float minSpan, in
         }
     if (hi - lo < minSpan)
         return 0;
+    turnSigma = angleError(pts, count, isInlier, line, in);
     // Guided by an expected edge: a line turned away from it is something else's outline.
     if (o.maxSeedDistance > 0.f && std::fabs(line.nx * ny - line.ny * nx) > o.maxSeedTurn)
         return 0;
@@ -369,9 +395,11 @@ bool refineQuad(const ConstImageView& rgb, const Quad& quad, const EdgeRefinemen
         }
         out.samples += count;
         Line2f line;
-        const int in = fitEdge(pts, count, nx, ny, minSpan, normals, options, line);
+        float turnSigma = 0.f;
+        const int in = fitEdge(pts, count, nx, ny, minSpan, normals, options, line, turnSigma);
         if (in > 0) {
             out.lines[e] = line;
+            out.turnSigma[e] = turnSigma;
             out.fitted[e] = true;
             out.inliers += in;
             ++out.edgesFitted;

@@ -62,9 +62,12 @@ struct EdgeRefinement {
     Quad quad{};          ///< refined corners (an edge without a good fit keeps its input line)
     Line2f lines[4];      ///< edge i runs from corner i to corner i + 1
     bool fitted[4] = {};  ///< edge i was fitted to image evidence
-    int normals = 0;      ///< sample lines walked (inside the image)
-    int samples = 0;      ///< edge points found
-    int inliers = 0;      ///< of those, inliers of their edge's line
+    /// A fitted edge's angle standard error (radians): its inliers' residual over their spread
+    /// along it (a line fitted on a short piece beside a hand is turned more easily)
+    float turnSigma[4] = {};
+    int normals = 0;  ///< sample lines walked (inside the image)
+    int samples = 0;  ///< edge points found
+    int inliers = 0;  ///< of those, inliers of their edge's line
     int edgesFitted = 0;
     int brightnessSamples = 0;  ///< edge points found by brightness alone (brightnessStep)
 };
