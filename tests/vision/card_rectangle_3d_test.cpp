@@ -142,8 +142,20 @@ TEST(CardCameraEstimate, RecoversTheFocalLengthAndAspectAndPlacesAHiddenEdge)
     Line2f kept;
     ASSERT_TRUE(lineThrough({truth[0].x, truth[0].y + 20.f}, {truth[1].x, truth[1].y + 35.f}, kept));
     EdgeRefinement r = withHiddenEdge(truth, 0, kept);
-    ASSERT_TRUE(e.placeHiddenEdge(project(kPoses[0]), r));
+    const EdgeRefinement exact = r;
+    float spread = 0.f;
+    ASSERT_TRUE(e.placeHiddenEdge(project(kPoses[0]), r, spread));
     EXPECT_LT(cornerError(r.quad, truth), 0.05f);
+    // The spread is small but not 0: here the card's centre as principal point is trusted too
+    // (these quads nearly agree on a focal length there) and places the edge a few px away.
+    EXPECT_LT(spread, 6.f);
+    // Neighbour lines fitted less surely (0.3 degrees) make the placement less sure.
+    EdgeRefinement rough = exact;
+    rough.turnSigma[1] = rough.turnSigma[3] = 0.3f * 3.14159265f / 180.f;
+    float roughSpread = 0.f;
+    ASSERT_TRUE(e.placeHiddenEdge(project(kPoses[0]), rough, roughSpread));
+    EXPECT_LT(cornerError(rough.quad, truth), 0.05f);
+    EXPECT_GT(roughSpread, spread + 1.f);
 }
 
 // cardgen projects its card about the card's centre, then moves it in the image: the camera's
@@ -170,6 +182,7 @@ TEST(CardCameraEstimate, TakesThePrincipalPointAtTheCardWhenTheQuadsAgreeThere)
     Line2f kept;
     ASSERT_TRUE(lineThrough(truth[1], {truth[2].x - 30.f, truth[2].y - 20.f}, kept));
     EdgeRefinement r = withHiddenEdge(truth, 1, kept);
-    ASSERT_TRUE(e.placeHiddenEdge(before, r));
+    float spread = 0.f;
+    ASSERT_TRUE(e.placeHiddenEdge(before, r, spread));
     EXPECT_LT(cornerError(r.quad, truth), 0.1f);
 }

@@ -37,23 +37,40 @@ public:
     /// With exactly one edge of `r` not fitted, that edge placed so the quad is the image of a
     /// rectangle of the card's aspect (its long side along whichever pair puts the quad nearer
     /// `expected`, the shape model's quad for this frame) seen with the focal length. `r.lines` and
-    /// `r.quad` are updated. False (r unchanged) when not trusted or degenerate.
-    bool placeHiddenEdge(const Quad& expected, EdgeRefinement& r) const noexcept;
+    /// `r.quad` are updated. `spread`: how far (pixels) the hidden corners move when each fitted
+    /// neighbour line is turned by its angle standard error (EdgeRefinement::turnSigma) and when
+    /// the focal length and the aspect are moved by theirs, and, while the other principal point
+    /// is trusted too, to where it places them, the moves added in quadrature: large when the
+    /// neighbours are near parallel in the image and their vanishing point, which sets the
+    /// foreshortening, is ill-determined. False (r unchanged) when not trusted or degenerate.
+    bool placeHiddenEdge(const Quad& expected, EdgeRefinement& r, float& spread) const noexcept;
 
 private:
     /// One principal point's least squares a f^2 = b (forgetting old frames) and its aspect.
     struct Hypothesis {
         double aa = 0.0, ab = 0.0, bb = 0.0;
-        double logAspect = 0.0, aspectWeight = 0.0;
+        double weight = 0.0;  // the quads' count, forgetting
+        double logAspect = 0.0, logAspect2 = 0.0, aspectWeight = 0.0;
         double focalSquared() const noexcept { return aa > 0.0 ? ab / aa : 0.0; }
         /// Residual over explained: how far the quads disagree on one focal length.
         double disagreement() const noexcept;
+        /// The focal length's relative standard error, the log aspect's standard error.
+        double focalError() const noexcept;
+        double aspectError() const noexcept;
     };
     void add(Hypothesis& h, const Quad& q, Point2f principal) noexcept;
     const Hypothesis& used() const noexcept;
     bool trusted(const Hypothesis& h) const noexcept;
-    bool place(const Line2f lines[4], int k, double ratio, Point2f principal, Point2f inside,
-               Point2f& p0, Point2f& p1) const noexcept;
+    bool place(const Line2f lines[4], int k, double ratio, double focal, Point2f principal,
+               bool atCard, Point2f inside, Point2f& p0, Point2f& p1) const noexcept;
+    /// A placement's choices: the sides' ratio, the principal point, a point inside the card.
+    struct Placement {
+        double ratio = 1.0;
+        Point2f principal{};
+        Point2f inside{};
+    };
+    float spreadOf(const EdgeRefinement& r, int k, const Placement& at, const Quad& expected,
+                   Point2f p0, Point2f p1) const noexcept;
 
     Hypothesis imageCentre_, cardCentre_;
     double scale_ = 1.0;  // the frame's larger side: a and b of order 1

@@ -1,5 +1,6 @@
 #include "card_quad_fit.hpp"
 
+#include "card_hidden_edge_blend.hpp"
 #include "card_shape_model.hpp"
 #include "vision/convex_hull.hpp"
 
@@ -13,6 +14,10 @@ namespace {
 /// Sine of the turn (about 11.5 degrees) beyond which a line fitted for an edge hidden in the last
 /// frame is an outline across the card rather than the card's edge coming back.
 constexpr float kHiddenOutlineTurn = 0.2f;
+/// How far (pixels) an image-plane placement of a hidden edge drifts per frame since the edge was
+/// last measured: a neighbour's length changes about 1 px a frame while the card turns in depth;
+/// the drift over n frames grows as sqrt(n).
+constexpr float kLengthDrift = 1.f;
 
 float edgeLength(const Quad& q, int i) noexcept
 {
@@ -169,18 +174,31 @@ bool hiddenEdgeOutline(const QuadJudge& judge, EdgeRefinement& r) noexcept
 /// Beyond §2 step 5: with three edges fitted, the hidden one placed so the quad is the image of
 /// the card in 3D (CardCameraEstimate), when the focal length and the card's aspect are trusted
 /// and the placed edge is not wholly out of view (an edge out of view is the card leaving it).
+/// Weighed against the image-plane placement (the similarity carry, else the neighbours' lengths)
+/// by each one's uncertainty (blendHiddenEdge): the 3D one's spread under the lines' fitting
+/// error and the estimate's (near parallel neighbours make it large), the image one's drift since
+/// the edge was last measured. The image placement is the carry, else the expected quad's
+/// neighbour lengths wherever the edge is (in view or not).
 bool placedInDepth(const QuadJudge& judge, EdgeRefinement& r) noexcept
 {
     if (!judge.camera)
         return false;
     const Quad& expected = judge.predicted ? *judge.predicted : *judge.measured;
     EdgeRefinement placed = r;
-    if (!judge.camera->placeHiddenEdge(expected, placed))
+    float spread = 0.f;
+    if (!judge.camera->placeHiddenEdge(expected, placed, spread))
         return false;
     int k = 0;
     while (r.fitted[k])
         ++k;
-    if (nearBorder(placed.quad[k], judge.frame) && nearBorder(placed.quad[(k + 1) % 4], judge.frame))
+    if (nearBorder(placed.quad[k], judge.frame) &&
+        nearBorder(placed.quad[(k + 1) % 4], judge.frame))
+        return false;
+    EdgeRefinement image = r;
+    const bool haveImage = carryHiddenEdge(*judge.measured, judge.frame, image) ||
+                           keepHiddenEdgeLengths(expected, image);
+    const float drift = kLengthDrift * std::sqrt(static_cast<float>(judge.sinceMeasured + 1));
+    if (haveImage && !blendHiddenEdge(image, drift, spread, placed))
         return false;
     r = placed;
     return true;

@@ -50,6 +50,8 @@ struct QuadJudge {
     /// The focal length and the card's aspect from the quads measured on all four edges: a hidden
     /// edge is placed so the quad is the image of the card in 3D (CardCameraEstimate), or null
     const CardCameraEstimate* camera = nullptr;
+    /// Tracked frames since the last quad measured on all four edges (`measured`)
+    unsigned sinceMeasured = 0;
 };
 
 struct QuadFit {
@@ -61,7 +63,7 @@ struct QuadFit {
     float shape = 1.f;        ///< 0..1: likeness to the last quad seen whole
     float fill = 0.f;         ///< component pixels per quad pixel
     int carried = -1;  ///< the edge without evidence carried with the card (carryHiddenEdge or the
-                    ///< card in 3D, CardCameraEstimate), or -1
+                       ///< card in 3D, CardCameraEstimate), or -1
     const char* why = "degenerate component";  ///< null when plausible
 };
 

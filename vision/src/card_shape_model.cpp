@@ -79,6 +79,9 @@ void CardShapeModel::track(const Quad& raw, float area, float aspect, unsigned m
     if (measured) {
         measured_ = raw;
         haveMeasured_ = true;
+        sinceMeasured_ = 0;
+    } else {
+        ++sinceMeasured_;
     }
     last_ = raw;
     lastArea_ = area;
@@ -190,6 +193,20 @@ bool carriedEdge(const Quad& reference, Size frame, const EdgeRefinement& r, int
            intersectLines(hidden, r.lines[(k + 1) % 4], p1);
 }
 
+/// A hidden corner on its fitted neighbour `line`, as far from the measured corner `from` as
+/// the corner was from it (oldFrom to oldTo).
+Point2f alongNeighbour(const Line2f& line, Point2f from, Point2f oldFrom, Point2f oldTo) noexcept
+{
+    float dx = -line.ny, dy = line.nx;
+    const float ox = oldTo.x - oldFrom.x, oy = oldTo.y - oldFrom.y;
+    if (dx * ox + dy * oy < 0.f) {
+        dx = -dx;
+        dy = -dy;
+    }
+    const float len = std::hypot(ox, oy);
+    return Point2f{from.x + dx * len, from.y + dy * len};
+}
+
 }  // namespace
 
 bool carryHiddenEdge(const Quad& reference, Size frame, EdgeRefinement& r) noexcept
@@ -203,6 +220,31 @@ bool carryHiddenEdge(const Quad& reference, Size frame, EdgeRefinement& r) noexc
     Point2f p0, p1;
     if (!carriedEdge(reference, frame, r, k, true, hidden, p0, p1) ||
         (!wellInView(p0, frame) && !wellInView(p1, frame)))
+        return false;
+    r.lines[k] = hidden;
+    r.quad[k] = p0;
+    r.quad[(k + 1) % 4] = p1;
+    return true;
+}
+
+bool keepHiddenEdgeLengths(const Quad& predicted, EdgeRefinement& r) noexcept
+{
+    if (r.edgesFitted != 3)
+        return false;
+    int k = 0;
+    while (r.fitted[k])
+        ++k;
+    const int s = bestShiftCentred(r.quad, predicted);  // r.quad[(i + s) % 4] is predicted[i]
+    auto expected = [&](int corner) { return predicted[(corner - s + 8) % 4]; };
+    Point2f a, b;  // the measured corners k + 2 and k + 3
+    if (!intersectLines(r.lines[(k + 1) % 4], r.lines[(k + 2) % 4], a) ||
+        !intersectLines(r.lines[(k + 2) % 4], r.lines[(k + 3) % 4], b))
+        return false;
+    const Point2f p1 =
+        alongNeighbour(r.lines[(k + 1) % 4], a, expected((k + 2) % 4), expected((k + 1) % 4));
+    const Point2f p0 = alongNeighbour(r.lines[(k + 3) % 4], b, expected((k + 3) % 4), expected(k));
+    Line2f hidden;
+    if (!lineThrough(p0, p1, hidden))
         return false;
     r.lines[k] = hidden;
     r.quad[k] = p0;
@@ -229,17 +271,6 @@ bool predictHiddenEdge(const Quad& predicted, float guide, bool fromPrediction, 
     if (!intersectLines(r.lines[(k + 1) % 4], r.lines[(k + 2) % 4], a) ||
         !intersectLines(r.lines[(k + 2) % 4], r.lines[(k + 3) % 4], b))
         return false;
-    // Each hidden corner on its fitted neighbour line, as far from the measured corner as last.
-    auto along = [&](const Line2f& line, Point2f from, Point2f oldFrom, Point2f oldTo) {
-        float dx = -line.ny, dy = line.nx;
-        const float ox = oldTo.x - oldFrom.x, oy = oldTo.y - oldFrom.y;
-        if (dx * ox + dy * oy < 0.f) {
-            dx = -dx;
-            dy = -dy;
-        }
-        const float len = std::hypot(ox, oy);
-        return Point2f{from.x + dx * len, from.y + dy * len};
-    };
     // A hand over a corner cuts the colour's hull short there: a hull's corner nearer its
     // measured neighbour than the card's was. One no nearer (or farther) is the card's.
     auto distance = [](Point2f p, Point2f q) { return std::hypot(p.x - q.x, p.y - q.y); };
@@ -248,14 +279,11 @@ bool predictHiddenEdge(const Quad& predicted, float guide, bool fromPrediction, 
     const float cut0 = lengthThen((k + 3) % 4, k) - distance(r.quad[k], b);
     if (!fromPrediction && (std::max(cut0, cut1) <= guide || std::min(cut0, cut1) < -guide))
         return false;
-    const Point2f p1 = along(r.lines[(k + 1) % 4], a, expected((k + 2) % 4), expected((k + 1) % 4));
-    const Point2f p0 = along(r.lines[(k + 3) % 4], b, expected((k + 3) % 4), expected(k));
-    Line2f hidden;
-    if (!wellInView(p0, frame) || !wellInView(p1, frame) || !lineThrough(p0, p1, hidden))
+    EdgeRefinement placed = r;
+    if (!keepHiddenEdgeLengths(predicted, placed) || !wellInView(placed.quad[k], frame) ||
+        !wellInView(placed.quad[(k + 1) % 4], frame))
         return false;
-    r.lines[k] = hidden;
-    r.quad[k] = p0;
-    r.quad[(k + 1) % 4] = p1;
+    r = placed;
     return true;
 }
 

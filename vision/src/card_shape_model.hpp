@@ -36,6 +36,8 @@ public:
     /// The last quad with all four edges fitted to the image (null: none since the reset): the
     /// card's measured shape that a hidden edge is carried from (carryHiddenEdge).
     const Quad* lastMeasured() const noexcept { return haveMeasured_ ? &measured_ : nullptr; }
+    /// Tracked frames since the last one measured on all four edges (0: the last one was).
+    unsigned sinceMeasured() const noexcept { return sinceMeasured_; }
     float lastArea() const noexcept { return lastArea_; }
     /// Where the card is expected `missed` frames after the last tracked one: moving on as it
     /// last moved.
@@ -63,6 +65,7 @@ private:
     bool haveGood_ = false;
     Quad measured_{};
     bool haveMeasured_ = false;
+    unsigned sinceMeasured_ = 0;
     bool hidden_ = false;
     Point2f hiddenEdge_[2] = {};
     float goodArea_ = 0.f;
@@ -96,6 +99,10 @@ bool carryHiddenEdge(const Quad& reference, Size frame, EdgeRefinement& r) noexc
 /// shorter than the card's was, none farther). False (r unchanged) otherwise.
 bool predictHiddenEdge(const Quad& predicted, float guide, bool fromPrediction, Size frame,
                        EdgeRefinement& r) noexcept;
+/// predictHiddenEdge's placement without its tests of view and of a cut hull: each hidden corner
+/// on its fitted neighbour line as far from the measured corner as in `predicted`, wherever that
+/// is (the image-plane placement a placement in 3D is weighed against, card_hidden_edge_blend).
+bool keepHiddenEdgeLengths(const Quad& predicted, EdgeRefinement& r) noexcept;
 /// How far a corner of edge k carried by carryHiddenEdge may be from the card's: the carry takes
 /// the card as turning in the image within about 3 degrees of its measured edge, so a corner at
 /// the far end of a neighbour edge may be off by that turn over the neighbour's length, and by as

@@ -190,6 +190,7 @@ QuadFit CardTracker::State::fitCard(const ConstImageView& rgb, const Quad* coars
     judge.predictedGuide = shape.edgeGuide(missed);
     judge.hidden = tracking && haveShape ? shape.lastHidden() : nullptr;
     judge.camera = tracking ? &camera : nullptr;
+    judge.sinceMeasured = shape.sinceMeasured();
     QuadFit best;
     if (coarse)
         best = fitQuad(rgb, *coarse, judge);
