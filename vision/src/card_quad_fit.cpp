@@ -197,6 +197,14 @@ bool placedInDepth(const QuadJudge& judge, EdgeRefinement& r) noexcept
     EdgeRefinement image = r;
     const bool haveImage = carryHiddenEdge(*judge.measured, judge.frame, image) ||
                            keepHiddenEdgeLengths(expected, image);
+    // Farther from the image placement than the card moves from where it is expected, the 3D
+    // one is a wrong solution of the lines (its spread measures how unsure a right one is, not
+    // whether it is right).
+    auto apart = [&](int i) {
+        return std::hypot(placed.quad[i].x - image.quad[i].x, placed.quad[i].y - image.quad[i].y);
+    };
+    if (haveImage && std::max(apart(k), apart((k + 1) % 4)) > judge.predictedGuide)
+        return false;
     const float drift = kLengthDrift * std::sqrt(static_cast<float>(judge.sinceMeasured + 1));
     if (haveImage && !blendHiddenEdge(image, drift, spread, placed))
         return false;
