@@ -220,9 +220,7 @@ bool CardCameraEstimate::placeHiddenEdge(const Quad& expected, EdgeRefinement& r
 {
     if (r.edgesFitted != 3 || !trusted())
         return false;
-    int k = 0;
-    while (r.fitted[k])
-        ++k;
+    const int k = firstUnfittedEdge(r);
     Point2f principal = centre_;
     if (principalAtCard() && !diagonalsMeet(expected, principal))
         return false;

@@ -9,9 +9,7 @@ bool blendHiddenEdge(const EdgeRefinement& image, float imageSigma, float depthS
 {
     if (r.edgesFitted != 3)
         return false;
-    int k = 0;
-    while (r.fitted[k])
-        ++k;
+    const int k = firstUnfittedEdge(r);
     const float vi = std::max(imageSigma * imageSigma, 1e-6f);
     const float vd = std::max(depthSigma * depthSigma, 1e-6f);
     const float toImage = vd / (vi + vd);

@@ -188,9 +188,7 @@ bool placedInDepth(const QuadJudge& judge, EdgeRefinement& r) noexcept
     float spread = 0.f;
     if (!judge.camera->placeHiddenEdge(expected, placed, spread))
         return false;
-    int k = 0;
-    while (r.fitted[k])
-        ++k;
+    const int k = firstUnfittedEdge(r);
     if (nearBorder(placed.quad[k], judge.frame) &&
         nearBorder(placed.quad[(k + 1) % 4], judge.frame))
         return false;
@@ -294,9 +292,7 @@ QuadFit fitQuad(const ConstImageView& rgb, const Quad& seed, const QuadJudge& ju
     // hull's edge lies outside the card. Walked again from deep inside, the card's edge is the
     // first step; kept only when it completes the quad.
     if (!judge.tracking && f.refinement.edgesFitted == 3 && isConvexClockwise(f.raw)) {
-        int k = 0;
-        while (f.refinement.fitted[k])
-            ++k;
+        const int k = firstUnfittedEdge(f.refinement);
         const Point2f a = f.refinement.quad[k], b = f.refinement.quad[(k + 1) % 4];
         if (!nearBorder(a, judge.frame) && !nearBorder(b, judge.frame)) {
             QuadFit deep;
@@ -311,9 +307,7 @@ QuadFit fitQuad(const ConstImageView& rgb, const Quad& seed, const QuadJudge& ju
         hiddenEdgeOutline(judge, f.refinement))
         f.raw = canonicalOrder(f.refinement.quad);
     if (judge.measured && f.refinement.edgesFitted == 3) {
-        int k = 0;
-        while (f.refinement.fitted[k])
-            ++k;
+        const int k = firstUnfittedEdge(f.refinement);
         if (placedInDepth(judge, f.refinement)) {
             f.raw = canonicalOrder(f.refinement.quad);
             f.carried = k;

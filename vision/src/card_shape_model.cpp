@@ -213,9 +213,7 @@ bool carryHiddenEdge(const Quad& reference, Size frame, EdgeRefinement& r) noexc
 {
     if (r.edgesFitted != 3)
         return false;
-    int k = 0;
-    while (r.fitted[k])
-        ++k;
+    const int k = firstUnfittedEdge(r);
     Line2f hidden;
     Point2f p0, p1;
     if (!carriedEdge(reference, frame, r, k, true, hidden, p0, p1) ||
@@ -231,9 +229,7 @@ bool keepHiddenEdgeLengths(const Quad& predicted, EdgeRefinement& r) noexcept
 {
     if (r.edgesFitted != 3)
         return false;
-    int k = 0;
-    while (r.fitted[k])
-        ++k;
+    const int k = firstUnfittedEdge(r);
     const int s = bestShiftCentred(r.quad, predicted);  // r.quad[(i + s) % 4] is predicted[i]
     auto expected = [&](int corner) { return predicted[(corner - s + 8) % 4]; };
     Point2f a, b;  // the measured corners k + 2 and k + 3
@@ -257,9 +253,7 @@ bool predictHiddenEdge(const Quad& predicted, float guide, bool fromPrediction, 
 {
     if (r.edgesFitted != 3)
         return false;
-    int k = 0;
-    while (r.fitted[k])
-        ++k;
+    const int k = firstUnfittedEdge(r);
     const int s = bestShiftCentred(r.quad, predicted);  // r.quad[(i + s) % 4] is predicted[i]
     auto expected = [&](int corner) { return predicted[(corner - s + 8) % 4]; };
     // The edge's kept line, or where it was, reaches the border: the card leaves the view there,

@@ -233,9 +233,7 @@ void CardTracker::State::remember(const QuadFit& fit, unsigned missed) noexcept
     if (fit.refinement.edgesFitted == 4)
         camera.measure(fit.raw, size);
     // The edge without evidence (under a hand), for the next frame's fit (hiddenEdgeOutline).
-    int k = 0;
-    while (k < 3 && fit.refinement.fitted[k])
-        ++k;
+    const int k = std::min(firstUnfittedEdge(fit.refinement), 3);
     shape.setHidden(fit.refinement.edgesFitted == 3, fit.refinement.quad[k],
                     fit.refinement.quad[(k + 1) % 4]);
 }

@@ -72,6 +72,15 @@ struct EdgeRefinement {
     int brightnessSamples = 0;  ///< edge points found by brightness alone (brightnessStep)
 };
 
+/// The first edge of `r` without a fit (4 when all four are fitted).
+inline int firstUnfittedEdge(const EdgeRefinement& r) noexcept
+{
+    int k = 0;
+    while (k < 4 && r.fitted[k])
+        ++k;
+    return k;
+}
+
 /// 8-bit saturation 255 (max - min) / max of a pixel's first three bytes (order-independent).
 /// The denominator is at least kSaturationDarkFloor: the saturation of near-black pixels is pure
 /// noise ((0, 0, 1) would be fully saturated) and would read as edges next to dark backgrounds.
