@@ -13,6 +13,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <limits>
 
 namespace vision {
 
@@ -103,16 +104,23 @@ ColorBounds CardTracker::State::searchBounds() const noexcept
 
 /// Step 4's component. While tracking, or just after losing the card, where the shape model
 /// expects it, with the pieces an occluder cut off it (a piece reaching out of there is something
-/// else of the card's colour); otherwise the largest one.
+/// else of the card's colour); a little longer after, the largest one there alone; otherwise the
+/// largest one.
 Component CardTracker::State::selectCard(int largestArea) noexcept
 {
+    constexpr unsigned kRecentFrames = 3;
     // A third of a second: about as long as an arm passing in front of the card hides it. Cut in
     // pieces by the arm, the card is smaller than a patch of its colour elsewhere, which the
-    // largest component would take for it (and then follow). Later the card may be anywhere.
-    constexpr unsigned kRecentFrames = 10;
-    if (shape.haveLast() && obs.framesSinceGood <= kRecentFrames)
-        return labeler.selectNear(shape.expectedBounds(obs.framesSinceGood),
-                                  std::max(16, largestArea / 20));
+    // largest component would take for it (and then follow). The place where it is expected grows
+    // with the frames lost, so from the fourth its pieces are no longer added: they would gather
+    // a patch of its colour beside it. Later the card may be anywhere.
+    constexpr unsigned kLostFrames = 10;
+    constexpr int kNoPieces = std::numeric_limits<int>::max();
+    const unsigned missed = obs.framesSinceGood;
+    if (shape.haveLast() && missed <= kLostFrames)
+        return labeler.selectNear(shape.expectedBounds(missed),
+                                  missed <= kRecentFrames ? std::max(16, largestArea / 20)
+                                                          : kNoPieces);
     return labeler.selectLargest();
 }
 
