@@ -199,8 +199,21 @@ driver=$!
 
 # The run's limit: boot_limit_s until the guest's calibration line, then timeout_s stretched by
 # its scale. Past it the machine is stopped (stopped_at_limit says so).
-calibration= limit=$boot_limit_s stopped_at_limit=0
+# Once the guest has logged "guest done" its checks and their results are complete; the power-off
+# that follows takes seconds, but once (2026-12-07, hotplug, all checks passed at 215 s) the
+# machine never powered off and the run waited 900 s for its limit. poweroff_grace_s after
+# "guest done" the machine is stopped, said in one line, and the run judged on its checks.
+poweroff_grace_s=${HIL_POWEROFF_GRACE_S:-60}
+calibration= limit=$boot_limit_s stopped_at_limit=0 done_at=0 stopped_after_done=0
 while kill -0 $qemu 2>/dev/null; do
+    if ((done_at == 0)) && grep -q ' guest done$' "$results/guest.log" 2>/dev/null; then
+        done_at=$SECONDS
+    fi
+    if ((done_at > 0 && SECONDS - done_at > poweroff_grace_s)); then
+        stopped_after_done=1
+        kill $qemu 2>/dev/null || true
+        break
+    fi
     if [ -z "$calibration" ]; then
         calibration=$(grep -ao 'HIL CALIBRATION .*' "$qemu_log" | tr -d '\r' | head -1) || true
         if [ -n "$calibration" ]; then
@@ -246,6 +259,8 @@ fail=0
 if ((stopped_at_limit)); then
     hil_say "stopped the machine at its limit of ${limit}s (${calibration:-no calibration line by then})"
     fail=1
+elif ((stopped_after_done)); then
+    hil_say "the machine did not power off within ${poweroff_grace_s}s of its checks ending; stopped it"
 elif ((status != 0)); then
     hil_say "qemu exited with $status after ${elapsed}s (124 = the hard stop at ${timeout_max_s}s)"
     fail=1
