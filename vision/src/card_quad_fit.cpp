@@ -18,6 +18,9 @@ constexpr float kHiddenOutlineTurn = 0.2f;
 /// last measured: a neighbour's length changes about 1 px a frame while the card turns in depth;
 /// the drift over n frames grows as sqrt(n).
 constexpr float kLengthDrift = 1.f;
+/// A turned edge's corners this many times farther from where they are expected than the card's
+/// edges may be (the shape model's guide): not the card's edge, which the guide allows for.
+constexpr float kOutlineFar = 2.f;
 
 float edgeLength(const Quad& q, int i) noexcept
 {
@@ -171,6 +174,51 @@ bool hiddenEdgeOutline(const QuadJudge& judge, EdgeRefinement& r) noexcept
     return true;
 }
 
+/// §2 future work (lost-track detection): while tracking, one edge of a four-edge fit turned from
+/// where the card is expected by more than the card turns in a frame, its corners farther from
+/// there than the card moves, while the other edges keep their directions, is an occluder's
+/// outline across the card (an arm splitting it), not the card's edge: that edge is marked
+/// without evidence, for the hidden edge's placements. Returns the edge, or -1.
+int outlineAcrossTheCard(const QuadJudge& judge, EdgeRefinement& r) noexcept
+{
+    const Quad& e = *judge.predicted;
+    auto dist = [](Point2f p, Point2f q) { return std::hypot(p.x - q.x, p.y - q.y); };
+    // The expected quad's corner for each of r's: the cyclic order (either way round) nearest.
+    int shift = 0, step = 1;
+    float nearest = 1e30f;
+    for (int dir : {1, -1})
+        for (int s = 0; s < 4; ++s) {
+            float d = 0.f;
+            for (int i = 0; i < 4; ++i)
+                d += dist(r.quad[i], e[(s + dir * i + 4) % 4]);
+            if (d < nearest) {
+                nearest = d;
+                shift = s;
+                step = dir;
+            }
+        }
+    auto expected = [&](int i) { return e[(shift + step * i + 8) % 4]; };
+    int outline = -1;
+    for (int i = 0; i < 4; ++i) {
+        const Point2f p0 = r.quad[i], p1 = r.quad[(i + 1) % 4];
+        const Point2f q0 = expected(i), q1 = expected(i + 1);
+        const float ux = p1.x - p0.x, uy = p1.y - p0.y, vx = q1.x - q0.x, vy = q1.y - q0.y;
+        const float turn = std::fabs(ux * vy - uy * vx) /
+                           std::max(std::hypot(ux, uy) * std::hypot(vx, vy), 1e-6f);
+        if (turn <= kHiddenOutlineTurn)
+            continue;
+        if (std::max(dist(p0, q0), dist(p1, q1)) <= kOutlineFar * judge.predictedGuide ||
+            outline >= 0)
+            return -1;  // turned within the card's motion, or more than one edge turned
+        outline = i;
+    }
+    if (outline < 0)
+        return -1;
+    r.fitted[outline] = false;
+    r.edgesFitted = 3;
+    return outline;
+}
+
 /// Beyond §2 step 5: with three edges fitted, the hidden one placed so the quad is the image of
 /// the card in 3D (CardCameraEstimate), when the focal length and the card's aspect are trusted
 /// and the placed edge is not wholly out of view (an edge out of view is the card leaving it).
@@ -306,18 +354,25 @@ QuadFit fitQuad(const ConstImageView& rgb, const Quad& seed, const QuadJudge& ju
     if (judge.hidden && judge.predicted && f.refinement.edgesFitted == 4 &&
         hiddenEdgeOutline(judge, f.refinement))
         f.raw = canonicalOrder(f.refinement.quad);
+    // An outline's edge is placed like a hidden one but not marked carried: no hand lies over the
+    // card's edge there, so the guided fit finding it (fitCard) is not a hand's outline.
+    const EdgeRefinement whole = f.refinement;
+    const bool outline = judge.predicted && judge.measured && f.refinement.edgesFitted == 4 &&
+                         outlineAcrossTheCard(judge, f.refinement) >= 0;
     if (judge.measured && f.refinement.edgesFitted == 3) {
         const int k = firstUnfittedEdge(f.refinement);
         if (placedInDepth(judge, f.refinement)) {
             f.raw = canonicalOrder(f.refinement.quad);
-            f.carried = k;
+            f.carried = outline ? -1 : k;
         } else if (carryHiddenEdge(*judge.measured, judge.frame, f.refinement)) {
             f.raw = canonicalOrder(f.refinement.quad);
-            f.carried = k;
+            f.carried = outline ? -1 : k;
         } else if (judge.predicted && predictHiddenEdge(*judge.predicted, judge.predictedGuide,
                                                         guide > 0.f, judge.frame, f.refinement)) {
             // Not marked as carried: the carried edge's tests (fitCard) are the similarity's.
             f.raw = canonicalOrder(f.refinement.quad);
+        } else if (outline) {
+            f.refinement = whole;  // nowhere to place it: the fit as it was
         }
     }
     // Plausibility: the beyond-the-dissertation lost-track test.
