@@ -18,8 +18,8 @@ constexpr float kHiddenOutlineTurn = 0.2f;
 /// last measured: a neighbour's length changes about 1 px a frame while the card turns in depth;
 /// the drift over n frames grows as sqrt(n).
 constexpr float kLengthDrift = 1.f;
-/// A turned edge's corners this many times farther from where they are expected than the card's
-/// edges may be (the shape model's guide): not the card's edge, which the guide allows for.
+/// An edge's line this many times farther from where the edge is expected than the card's edges
+/// may be (the shape model's guide): not the card's edge, which the guide allows for.
 constexpr float kOutlineFar = 2.f;
 
 float edgeLength(const Quad& q, int i) noexcept
@@ -127,7 +127,7 @@ const char* unlikeTheCard(QuadFit& f, const QuadJudge& j) noexcept
         if (f.refinement.fitted[i])
             continue;
         const Point2f a = f.refinement.quad[i], b = f.refinement.quad[(i + 1) % 4];
-        if (nearBorder(a, j.frame) && nearBorder(b, j.frame))
+        if (nearBorder(a, j.frame) && nearBorder(b, j.frame) && i != f.inDepth)
             return "card leaving the frame";
         if (i != f.carried && std::max(outside(a), outside(b)) > far)
             return "card leaving the frame";
@@ -174,11 +174,12 @@ bool hiddenEdgeOutline(const QuadJudge& judge, EdgeRefinement& r) noexcept
     return true;
 }
 
-/// §2 future work (lost-track detection): while tracking, one edge of a four-edge fit turned from
-/// where the card is expected by more than the card turns in a frame, its corners farther from
-/// there than the card moves, while the other edges keep their directions, is an occluder's
-/// outline across the card (an arm splitting it), not the card's edge: that edge is marked
-/// without evidence, for the hidden edge's placements. Returns the edge, or -1.
+/// §2 future work (lost-track detection): while tracking, one edge of a four-edge fit whose line
+/// passes farther from where that edge is expected than the card moves (twice the shape model's
+/// guide), the other three as expected, is an occluder's outline (an arm across the card, a
+/// hand's side beside an edge out of view), not the card's edge: a rigid card's edges move
+/// together. That edge is marked without evidence, for the hidden edge's placements. Returns the
+/// edge, or -1.
 int outlineAcrossTheCard(const QuadJudge& judge, EdgeRefinement& r) noexcept
 {
     const Quad& e = *judge.predicted;
@@ -201,15 +202,15 @@ int outlineAcrossTheCard(const QuadJudge& judge, EdgeRefinement& r) noexcept
     int outline = -1;
     for (int i = 0; i < 4; ++i) {
         const Point2f p0 = r.quad[i], p1 = r.quad[(i + 1) % 4];
-        const Point2f q0 = expected(i), q1 = expected(i + 1);
-        const float ux = p1.x - p0.x, uy = p1.y - p0.y, vx = q1.x - q0.x, vy = q1.y - q0.y;
-        const float turn = std::fabs(ux * vy - uy * vx) /
-                           std::max(std::hypot(ux, uy) * std::hypot(vx, vy), 1e-6f);
-        if (turn <= kHiddenOutlineTurn)
+        const float len = std::max(dist(p0, p1), 1e-6f);
+        auto offLine = [&](Point2f q) {
+            return std::fabs((p1.x - p0.x) * (q.y - p0.y) - (p1.y - p0.y) * (q.x - p0.x)) / len;
+        };
+        if (std::max(offLine(expected(i)), offLine(expected(i + 1))) <=
+            kOutlineFar * judge.predictedGuide)
             continue;
-        if (std::max(dist(p0, q0), dist(p1, q1)) <= kOutlineFar * judge.predictedGuide ||
-            outline >= 0)
-            return -1;  // turned within the card's motion, or more than one edge turned
+        if (outline >= 0)
+            return -1;  // more than one edge far: the card is not where it is expected
         outline = i;
     }
     if (outline < 0)
@@ -220,8 +221,8 @@ int outlineAcrossTheCard(const QuadJudge& judge, EdgeRefinement& r) noexcept
 }
 
 /// Beyond §2 step 5: with three edges fitted, the hidden one placed so the quad is the image of
-/// the card in 3D (CardCameraEstimate), when the focal length and the card's aspect are trusted
-/// and the placed edge is not wholly out of view (an edge out of view is the card leaving it).
+/// the card in 3D (CardCameraEstimate), when the focal length and the card's aspect are trusted;
+/// wholly out of view (the rest of the card in view) only where an image-plane placement agrees.
 /// Weighed against the image-plane placement (the similarity carry, else the neighbours' lengths)
 /// by each one's uncertainty (blendHiddenEdge): the 3D one's spread under the lines' fitting
 /// error and the estimate's (near parallel neighbours make it large), the image one's drift since
@@ -237,12 +238,14 @@ bool placedInDepth(const QuadJudge& judge, EdgeRefinement& r) noexcept
     if (!judge.camera->placeHiddenEdge(expected, placed, spread))
         return false;
     const int k = firstUnfittedEdge(r);
-    if (nearBorder(placed.quad[k], judge.frame) &&
-        nearBorder(placed.quad[(k + 1) % 4], judge.frame))
-        return false;
+    const bool outOfView = nearBorder(placed.quad[k], judge.frame) &&
+                           nearBorder(placed.quad[(k + 1) % 4], judge.frame);
     EdgeRefinement image = r;
     const bool haveImage = carryHiddenEdge(*judge.measured, judge.frame, image) ||
                            keepHiddenEdgeLengths(expected, image);
+    // Out of view, only where the card's recent shape agrees (no image evidence is possible).
+    if (outOfView && !haveImage)
+        return false;
     // Farther from the image placement than the card moves from where it is expected, the 3D
     // one is a wrong solution of the lines (its spread measures how unsure a right one is, not
     // whether it is right).
@@ -364,6 +367,7 @@ QuadFit fitQuad(const ConstImageView& rgb, const Quad& seed, const QuadJudge& ju
         if (placedInDepth(judge, f.refinement)) {
             f.raw = canonicalOrder(f.refinement.quad);
             f.carried = outline ? -1 : k;
+            f.inDepth = k;
         } else if (carryHiddenEdge(*judge.measured, judge.frame, f.refinement)) {
             f.raw = canonicalOrder(f.refinement.quad);
             f.carried = outline ? -1 : k;

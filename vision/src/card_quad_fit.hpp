@@ -64,6 +64,7 @@ struct QuadFit {
     float fill = 0.f;         ///< component pixels per quad pixel
     int carried = -1;  ///< the edge without evidence carried with the card (carryHiddenEdge or the
                        ///< card in 3D, CardCameraEstimate), or -1
+    int inDepth = -1;  ///< the edge without evidence placed with the card in 3D, or -1
     const char* why = "degenerate component";  ///< null when plausible
 };
 
