@@ -2,8 +2,9 @@
 // from projected rectangles, and a hidden edge placed where the rectangle's projection puts it
 // (card_rectangle_3d, card_camera_estimate).
 
-#include "card_camera_estimate.hpp"
 #include "card_rectangle_3d.hpp"
+
+#include "card_camera_estimate.hpp"
 
 #include <gtest/gtest.h>
 
@@ -48,8 +49,8 @@ Quad project(const Pose& p, Point2f principal = kImageCentre)
 }
 
 const Pose kPoses[] = {
-    {0.5, 0.3, 0.1, -40.0, 20.0, 700.0},  {-0.4, 0.5, -0.2, 60.0, -30.0, 650.0},
-    {0.6, -0.4, 0.3, 0.0, 50.0, 800.0},   {-0.3, -0.6, 0.0, -80.0, -40.0, 720.0},
+    {0.5, 0.3, 0.1, -40.0, 20.0, 700.0},    {-0.4, 0.5, -0.2, 60.0, -30.0, 650.0},
+    {0.6, -0.4, 0.3, 0.0, 50.0, 800.0},     {-0.3, -0.6, 0.0, -80.0, -40.0, 720.0},
     {0.45, 0.45, -0.1, 100.0, 30.0, 680.0}, {-0.55, 0.2, 0.25, -20.0, 0.0, 750.0},
 };
 
@@ -71,7 +72,8 @@ EdgeRefinement withHiddenEdge(const Quad& q, int hidden, const Line2f& kept)
 
 Point2f centreOf(const Quad& q)
 {
-    return {0.25f * (q[0].x + q[1].x + q[2].x + q[3].x), 0.25f * (q[0].y + q[1].y + q[2].y + q[3].y)};
+    return {0.25f * (q[0].x + q[1].x + q[2].x + q[3].x),
+            0.25f * (q[0].y + q[1].y + q[2].y + q[3].y)};
 }
 
 float cornerError(const Quad& a, const Quad& b)
@@ -140,7 +142,8 @@ TEST(CardCameraEstimate, RecoversTheFocalLengthAndAspectAndPlacesAHiddenEdge)
     // A card turning on: its last quad is where it is expected; its top edge is under a hand.
     const Quad truth = project({0.6, 0.35, 0.15, -30.0, 25.0, 690.0});
     Line2f kept;
-    ASSERT_TRUE(lineThrough({truth[0].x, truth[0].y + 20.f}, {truth[1].x, truth[1].y + 35.f}, kept));
+    ASSERT_TRUE(
+        lineThrough({truth[0].x, truth[0].y + 20.f}, {truth[1].x, truth[1].y + 35.f}, kept));
     EdgeRefinement r = withHiddenEdge(truth, 0, kept);
     const EdgeRefinement exact = r;
     float spread = 0.f;
@@ -161,11 +164,32 @@ TEST(CardCameraEstimate, RecoversTheFocalLengthAndAspectAndPlacesAHiddenEdge)
 // cardgen projects its card about the card's centre, then moves it in the image: the camera's
 // axis goes through the card. The estimate takes that principal point when the quads agree on one
 // focal length there and not at the image's centre.
+// A quad fitted on four edges is judged by its sides' ratio in 3D: the card's own quads agree
+// with the aspect; one with an occluder's outline taken for an edge (the top edge 15 px low) does
+// not. Before the aspect has settled (15 frames), no quad is judged.
+TEST(CardCameraEstimate, AQuadWithAnEdgeOffIsNotTheCardsShapeIn3d)
+{
+    CardCameraEstimate e;
+    for (int i = 0; i < 6; ++i)
+        e.measure(project(kPoses[i]), kFrame);
+    ASSERT_TRUE(e.trusted());
+    const Quad truth = project({0.6, 0.35, 0.15, -30.0, 25.0, 690.0});
+    Quad off = truth;
+    off[0].y += 15.f;
+    off[1].y += 15.f;
+    EXPECT_EQ(e.aspectMismatch(off), 0.0);  // 6 frames of aspect: not settled
+    for (int round = 0; round < 2; ++round)
+        for (const Pose& p : kPoses)
+            e.measure(project(p), kFrame);
+    EXPECT_LT(e.aspectMismatch(truth), 0.01);
+    EXPECT_GT(e.aspectMismatch(off), 0.05);
+}
+
 TEST(CardCameraEstimate, TakesThePrincipalPointAtTheCardWhenTheQuadsAgreeThere)
 {
     CardCameraEstimate e;
-    const Point2f places[] = {{200.f, 150.f}, {520.f, 330.f}, {300.f, 360.f}, {480.f, 120.f},
-                              {360.f, 240.f}, {150.f, 300.f}};
+    const Point2f places[] = {{200.f, 150.f}, {520.f, 330.f}, {300.f, 360.f},
+                              {480.f, 120.f}, {360.f, 240.f}, {150.f, 300.f}};
     for (int round = 0; round < 3; ++round)
         for (int i = 0; i < 6; ++i) {
             Pose p = kPoses[i];

@@ -10,11 +10,10 @@
 // image). Each keeps its own least-squares focal length; the one whose quads agree on one focal
 // length (the smaller residual) is used.
 
+#include "card_rectangle_3d.hpp"
 #include "vision/edge_refinement.hpp"
 #include "vision/geometry.hpp"
 #include "vision/image.hpp"
-
-#include "card_rectangle_3d.hpp"
 
 namespace vision {
 
@@ -44,6 +43,10 @@ public:
     /// neighbours are near parallel in the image and their vanishing point, which sets the
     /// foreshortening, is ill-determined. False (r unchanged) when not trusted or degenerate.
     bool placeHiddenEdge(const Quad& expected, EdgeRefinement& r, float& spread) const noexcept;
+    /// How far a quad fitted on all four edges is from the image of the card: |log| of its sides'
+    /// ratio in 3D (long over short, seen with the focal length) over the card's aspect. 0 when
+    /// not trusted, not yet settled (fewer than 15 frames of aspect) or degenerate.
+    double aspectMismatch(const Quad& q) const noexcept;
 
 private:
     /// One principal point's least squares a f^2 = b (forgetting old frames) and its aspect.

@@ -298,6 +298,17 @@ TEST(CardFailureModes, AHandsSideBesideAnEdgeOutOfViewIsNotTakenForIt)
     EXPECT_EQ(run.metrics.falseTrackingFrames, 0);
 }
 
+// An arm from the left over the card's top edge, near parallel to it and 15 px inside: the
+// guided walks took its outline for that edge and all four edges were fitted (frame 89 14 px
+// off, then 3-6 px for three frames), preferred to the fit that placed the edge in 3D. A quad
+// fitted on four edges whose sides' ratio in 3D is not the card's aspect is not the card.
+TEST(CardFailureModes, AnArmAlongAnEdgeIsNotTakenForItWhereTheCardsShapeIn3dSaysSo)
+{
+    const TrackerRun run = runScenario("hard", 9015, 1, 100, 150);
+    EXPECT_LE(run.metrics.maxErrPx, 6.0) << misses(run);
+    EXPECT_EQ(run.metrics.falseTrackingFrames, 0);
+}
+
 // A card in front of something as saturated as itself and of a near hue (a red card on an
 // orange wall): no saturation step anywhere around it (not even the grey of a blend between
 // complementary colours), so step 5 found too few edge points in every frame.
