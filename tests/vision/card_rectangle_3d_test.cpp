@@ -106,6 +106,20 @@ TEST(CardRectangle3d, TheSidesRatioIsTheCardsAspect)
         EXPECT_NEAR(rectangleSideRatio(project(p), {kFocal, kImageCentre}), kAspect, 1e-3);
 }
 
+// The sides of a rectangle's image meet at right angles in 3D; an edge turned about one corner
+// (a hand's side taken for it) does not.
+TEST(CardRectangle3d, ARectanglesSidesAreAtRightAnglesIn3d)
+{
+    for (const Pose& p : kPoses) {
+        const Quad q = project(p);
+        EXPECT_LT(rectangleSkew(q, {kFocal, kImageCentre}), 1e-4);
+        Quad turned = q;  // its bottom right corner a fifth of the bottom edge farther out
+        turned[2].x += 0.2f * (q[2].x - q[3].x);
+        turned[2].y += 0.2f * (q[2].y - q[3].y);
+        EXPECT_GT(rectangleSkew(turned, {kFocal, kImageCentre}), 0.02);  // 0.04-0.2 here
+    }
+}
+
 TEST(CardRectangle3d, AHiddenEdgeIsPlacedWhereTheRectangleProjects)
 {
     for (const Pose& p : kPoses) {
@@ -183,6 +197,10 @@ TEST(CardCameraEstimate, AQuadWithAnEdgeOffIsNotTheCardsShapeIn3d)
             e.measure(project(p), kFrame);
     EXPECT_LT(e.aspectMismatch(truth), 0.01);
     EXPECT_GT(e.aspectMismatch(off), 0.05);
+    EXPECT_LT(e.rightAngleMismatch(truth), 0.01);
+    Quad turned = truth;
+    turned[2].x += 12.f;  // the right edge turned about its top corner
+    EXPECT_GT(e.rightAngleMismatch(turned), 0.05);
 }
 
 TEST(CardCameraEstimate, TakesThePrincipalPointAtTheCardWhenTheQuadsAgreeThere)

@@ -23,6 +23,10 @@ constexpr double kMinAspectFrames = 5.0;
 /// Before it judges a quad (aspectMismatch): over the hard seeds, the estimate from 11-13 frames
 /// still differed from right quads by up to 0.08, from 15 frames on by at most 0.033.
 constexpr double kSettledAspectFrames = 15.0;
+/// ... and while its quads agree on one focal length this well (a fifth of kMaxDisagreement): in
+/// a run started mid-sequence, the image centre taken at 0.026-0.032 saw the card's own quads'
+/// sides 3 degrees off a right angle.
+constexpr double kSettledDisagreement = 0.01;
 /// Passes that move the principal point to the card's centre as the hidden edge settles.
 constexpr int kCentrePasses = 4;
 /// The least angle error (radians, 0.02 degrees) a fitted line is taken to have.
@@ -220,12 +224,25 @@ float CardCameraEstimate::spreadOf(const EdgeRefinement& r, int k, const Placeme
     return placed ? std::sqrt(sum) : 1e30f;
 }
 
+bool CardCameraEstimate::settledView(const Quad& q, PinholeView& view) const noexcept
+{
+    if (!trusted() || used().aspectWeight < kSettledAspectFrames ||
+        used().disagreement() > kSettledDisagreement)
+        return false;
+    view = {focal(), centre_};
+    return !principalAtCard() || diagonalsMeet(q, view.principal);
+}
+
+double CardCameraEstimate::rightAngleMismatch(const Quad& q) const noexcept
+{
+    PinholeView view;
+    return settledView(q, view) ? rectangleSkew(q, view) : 0.0;
+}
+
 double CardCameraEstimate::aspectMismatch(const Quad& q) const noexcept
 {
-    if (!trusted() || used().aspectWeight < kSettledAspectFrames)
-        return 0.0;
-    PinholeView view{focal(), centre_};
-    if (principalAtCard() && !diagonalsMeet(q, view.principal))
+    PinholeView view;
+    if (!settledView(q, view))
         return 0.0;
     const double ratio = rectangleSideRatio(q, view);
     if (!(ratio > 0.0))

@@ -47,6 +47,9 @@ public:
     /// ratio in 3D (long over short, seen with the focal length) over the card's aspect. 0 when
     /// not trusted, not yet settled (fewer than 15 frames of aspect) or degenerate.
     double aspectMismatch(const Quad& q) const noexcept;
+    /// The same quad's sides' angle in 3D: |cos| of it (rectangleSkew), 0 for the card's right
+    /// angle; 0 when not trusted, not yet settled or degenerate.
+    double rightAngleMismatch(const Quad& q) const noexcept;
 
 private:
     /// One principal point's least squares a f^2 = b (forgetting old frames) and its aspect.
@@ -63,6 +66,9 @@ private:
     };
     void add(Hypothesis& h, const Quad& q, Point2f principal) noexcept;
     const Hypothesis& used() const noexcept;
+    /// The camera a settled estimate sees `q` with (its principal point at q's centre when that
+    /// hypothesis is used); false when not trusted, not yet settled or degenerate.
+    bool settledView(const Quad& q, PinholeView& view) const noexcept;
     bool trusted(const Hypothesis& h) const noexcept;
     bool place(const Line2f lines[4], int k, double ratio, double focal, Point2f principal,
                bool atCard, Point2f inside, Point2f& p0, Point2f& p1) const noexcept;

@@ -25,6 +25,9 @@ constexpr float kOutlineFar = 2.f;
 /// ratio): over the 72 hard and unseen seeds, 7276 quads within 2 px of the card differed by at
 /// most 0.033 once the estimate settled; 11 of 17 more than 6 px off by more than 0.05.
 constexpr double kMaxAspectMismatch = 0.05;
+/// The most |cos| of the angle in 3D between a quad's pairs of sides may be (about 3 degrees from
+/// a right angle): over the same seeds, right quads at most 0.048; 11 of the 17 far off above.
+constexpr double kMaxRightAngleMismatch = 0.05;
 
 float edgeLength(const Quad& q, int i) noexcept
 {
@@ -114,10 +117,11 @@ const char* unlikeTheCard(QuadFit& f, const QuadJudge& j) noexcept
                 return "corner far out of view";
     }
     // Beyond §2: a quad fitted on four edges is the image of the card's rectangle
-    // (CardCameraEstimate): its sides' ratio in 3D far from the card's is an outline taken for an
-    // edge.
+    // (CardCameraEstimate): its sides' ratio in 3D far from the card's, or its sides' angle in 3D
+    // far from a right angle, is an outline taken for an edge.
     if (j.camera && f.refinement.edgesFitted == 4 &&
-        j.camera->aspectMismatch(f.raw) > kMaxAspectMismatch)
+        (j.camera->aspectMismatch(f.raw) > kMaxAspectMismatch ||
+         j.camera->rightAngleMismatch(f.raw) > kMaxRightAngleMismatch))
         return "not the card's shape in 3D";
     if (j.tracking) {
         const float jump = f.area / std::max(j.lastArea, 1.f);

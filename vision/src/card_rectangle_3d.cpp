@@ -46,8 +46,9 @@ Vec3 centred(Point2f p, Point2f principal, double scale) noexcept
 /// A line n.p = c as a homogeneous line in pixels measured from the principal point.
 Vec3 centred(const Line2f& l, Point2f principal) noexcept
 {
-    return {l.nx, l.ny,
-            static_cast<double>(l.nx) * principal.x + static_cast<double>(l.ny) * principal.y - l.c};
+    return {
+        l.nx, l.ny,
+        static_cast<double>(l.nx) * principal.x + static_cast<double>(l.ny) * principal.y - l.c};
 }
 
 /// The direction in 3D of the ray through a homogeneous image point (x, y, w), centred, in pixels.
@@ -63,18 +64,36 @@ Point2f project(Vec3 p, const PinholeView& view) noexcept
             static_cast<float>(view.focal * p.y / p.z + view.principal.y)};
 }
 
+/// The quad's sides as homogeneous lines, in pixels from the principal point.
+void sideLines(const Quad& q, Point2f principal, Vec3 lines[4]) noexcept
+{
+    for (int i = 0; i < 4; ++i)
+        lines[i] = cross(centred(q[i], principal, 1.0), centred(q[(i + 1) % 4], principal, 1.0));
+}
+
 }  // namespace
 
 FocalConstraint rectangleFocalConstraint(const Quad& q, Point2f principal, double scale) noexcept
 {
     Vec3 lines[4];
     for (int i = 0; i < 4; ++i)
-        lines[i] = cross(centred(q[i], principal, scale), centred(q[(i + 1) % 4], principal, scale));
+        lines[i] =
+            cross(centred(q[i], principal, scale), centred(q[(i + 1) % 4], principal, scale));
     const Vec3 v1 = cross(lines[0], lines[2]), v2 = cross(lines[1], lines[3]);
     const double n = length(v1) * length(v2);
     if (!(n > 0.0))
         return {};
     return {v1.z * v2.z / n, -(v1.x * v2.x + v1.y * v2.y) / n};
+}
+
+double rectangleSkew(const Quad& q, const PinholeView& view) noexcept
+{
+    Vec3 lines[4];
+    sideLines(q, view.principal, lines);
+    const Vec3 d1 = ray(cross(lines[0], lines[2]), view.focal);
+    const Vec3 d2 = ray(cross(lines[1], lines[3]), view.focal);
+    const double n = length(d1) * length(d2);
+    return n > 0.0 ? std::fabs(dot(d1, d2)) / n : 1.0;
 }
 
 double rectangleSideRatio(const Quad& q, const PinholeView& view) noexcept
@@ -84,9 +103,7 @@ double rectangleSideRatio(const Quad& q, const PinholeView& view) noexcept
     Vec3 rays[4], lines[4];
     for (int i = 0; i < 4; ++i)
         rays[i] = ray(centred(q[i], view.principal, 1.0), view.focal);
-    for (int i = 0; i < 4; ++i)
-        lines[i] = cross(centred(q[i], view.principal, 1.0),
-                         centred(q[(i + 1) % 4], view.principal, 1.0));
+    sideLines(q, view.principal, lines);
     const Vec3 normal = cross(ray(cross(lines[0], lines[2]), view.focal),
                               ray(cross(lines[1], lines[3]), view.focal));
     Vec3 corners[4];

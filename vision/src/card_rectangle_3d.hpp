@@ -30,6 +30,10 @@ struct FocalConstraint {
 };
 FocalConstraint rectangleFocalConstraint(const Quad& q, Point2f principal, double scale) noexcept;
 
+/// |cos| of the angle in 3D between the directions of the quad's two pairs of sides (their
+/// vanishing points' rays), seen through `view`: 0 for the image of a rectangle, 1 when
+/// degenerate.
+double rectangleSkew(const Quad& q, const PinholeView& view) noexcept;
 /// The length in 3D of the quad's edges 0 and 2 over that of edges 1 and 3 (each pair averaged),
 /// the quad taken as a rectangle seen through `view`. 0 when degenerate.
 double rectangleSideRatio(const Quad& q, const PinholeView& view) noexcept;
