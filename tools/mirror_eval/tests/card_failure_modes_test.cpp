@@ -19,6 +19,13 @@ using card_test::runFrames;
 using card_test::runScenario;
 using card_test::TrackerRun;
 
+/// Every scored frame within `maxErr` pixels of the card, none tracked without it.
+void expectNearTheCard(const TrackerRun& run, double maxErr)
+{
+    EXPECT_LE(run.metrics.maxErrPx, maxErr) << misses(run);
+    EXPECT_EQ(run.metrics.falseTrackingFrames, 0);
+}
+
 void expectHeld(const TrackerRun& run, double maxMeanErr, double minWithin)
 {
     const mirror_eval::CardMetrics& m = run.metrics;
@@ -66,9 +73,7 @@ TEST(CardFailureModes, AnEdgeTheColoursQuadMisplacedIsFoundWhenFindingTheCard)
 // does not make a found card; it is lost until its edges are seen (a few frames longer).
 TEST(CardFailureModes, ACardFoundAgainNeedsEveryEdgeInViewSeen)
 {
-    const TrackerRun run = runScenario("hard", 3012, 84, 99, 150);
-    EXPECT_LE(run.metrics.maxErrPx, 6.0) << misses(run);
-    EXPECT_EQ(run.metrics.falseTrackingFrames, 0);
+    expectNearTheCard(runScenario("hard", 3012, 84, 99, 150), 6.0);
 }
 
 // An arm across the middle cut the card in two and the top piece was too thin to join: the
@@ -207,9 +212,7 @@ TEST(CardFailureModes, ACornerFarOutOfViewIsNotGuessedWhenFindingTheCardAgain)
 // evidence running far out of view, not carried with the card, is not the card's.
 TEST(CardFailureModes, AnEdgeOfTheHullRunningOutOfViewIsNotTakenForTheCards)
 {
-    const TrackerRun run = runScenario("hard", 7006, 96, 112, 150);
-    EXPECT_LE(run.metrics.maxErrPx, 6.0) << misses(run);
-    EXPECT_EQ(run.metrics.falseTrackingFrames, 0);
+    expectNearTheCard(runScenario("hard", 7006, 96, 112, 150), 6.0);
 }
 
 // An arm across the card hid it for four frames (half out of view at the top); found again in
@@ -246,9 +249,7 @@ TEST(CardFailureModes, ACardBesideABackgroundOfNearlyItsColourIsFoundFromDeepIns
 // where it is expected is not used.
 TEST(CardFailureModes, AWrongSolutionOfTheCardIn3DIsNotTakenForItsHiddenCorner)
 {
-    const TrackerRun run = runScenario("hard", 7011, 1, 110, 150);
-    EXPECT_LE(run.metrics.maxErrPx, 12.0) << misses(run);
-    EXPECT_EQ(run.metrics.falseTrackingFrames, 0);
+    expectNearTheCard(runScenario("hard", 7011, 1, 110, 150), 12.0);
 }
 
 // The same rule kept a patch of the card's colour out: lost for six frames leaving the view, the
@@ -271,9 +272,7 @@ TEST(CardFailureModes, ACardLostForLongerIsNotJoinedToAPatchOfItsColourBesideIt)
 // moves, the others as expected, is placed as a hidden edge.
 TEST(CardFailureModes, AnArmsOutlineTurnedAcrossTheCardIsNotTakenForItsEdge)
 {
-    const TrackerRun run = runScenario("hard", 9006, 1, 111, 150);
-    EXPECT_LE(run.metrics.maxErrPx, 6.0) << misses(run);
-    EXPECT_EQ(run.metrics.falseTrackingFrames, 0);
+    expectNearTheCard(runScenario("hard", 9006, 1, 111, 150), 6.0);
 }
 
 // The card leaving the view on the right, an arm across it: its right edge, both corners out of
@@ -282,9 +281,7 @@ TEST(CardFailureModes, AnArmsOutlineTurnedAcrossTheCardIsNotTakenForItsEdge)
 // recent shape agrees, an edge out of view is kept (the rest of the card is in view).
 TEST(CardFailureModes, AnEdgeOutOfViewIsPlacedAsTheCardIn3d)
 {
-    const TrackerRun run = runScenario("hard", 3003, 1, 100, 150);
-    EXPECT_LE(run.metrics.maxErrPx, 15.0) << misses(run);
-    EXPECT_EQ(run.metrics.falseTrackingFrames, 0);
+    expectNearTheCard(runScenario("hard", 3003, 1, 100, 150), 15.0);
 }
 
 // A hand over the card's right edge while that edge is out of view: the walks found the hand's
@@ -293,9 +290,7 @@ TEST(CardFailureModes, AnEdgeOutOfViewIsPlacedAsTheCardIn3d)
 // expected, it is placed as a hidden edge.
 TEST(CardFailureModes, AHandsSideBesideAnEdgeOutOfViewIsNotTakenForIt)
 {
-    const TrackerRun run = runScenario("hard", 7007, 60, 110, 150);
-    EXPECT_LE(run.metrics.maxErrPx, 12.0) << misses(run);
-    EXPECT_EQ(run.metrics.falseTrackingFrames, 0);
+    expectNearTheCard(runScenario("hard", 7007, 60, 110, 150), 12.0);
 }
 
 // An arm from the left over the card's top edge, near parallel to it and 15 px inside: the
@@ -304,9 +299,7 @@ TEST(CardFailureModes, AHandsSideBesideAnEdgeOutOfViewIsNotTakenForIt)
 // fitted on four edges whose sides' ratio in 3D is not the card's aspect is not the card.
 TEST(CardFailureModes, AnArmAlongAnEdgeIsNotTakenForItWhereTheCardsShapeIn3dSaysSo)
 {
-    const TrackerRun run = runScenario("hard", 9015, 1, 100, 150);
-    EXPECT_LE(run.metrics.maxErrPx, 6.0) << misses(run);
-    EXPECT_EQ(run.metrics.falseTrackingFrames, 0);
+    expectNearTheCard(runScenario("hard", 9015, 1, 100, 150), 6.0);
 }
 
 // A hand over the card's bottom right corner, its fingers along the right edge: the walks took
@@ -315,9 +308,7 @@ TEST(CardFailureModes, AnArmAlongAnEdgeIsNotTakenForItWhereTheCardsShapeIn3dSays
 // sides are not at right angles in 3D is not the card.
 TEST(CardFailureModes, AHandsSideTurningAnEdgeIsNotTakenForItWhereTheCardsRightAngleSaysSo)
 {
-    const TrackerRun run = runScenario("hard", 9011, 1, 86, 150);
-    EXPECT_LE(run.metrics.maxErrPx, 6.0) << misses(run);
-    EXPECT_EQ(run.metrics.falseTrackingFrames, 0);
+    expectNearTheCard(runScenario("hard", 9011, 1, 86, 150), 6.0);
 }
 
 // A card in front of something as saturated as itself and of a near hue (a red card on an
