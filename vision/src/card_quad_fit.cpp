@@ -18,8 +18,9 @@ constexpr float kHiddenOutlineTurn = 0.2f;
 /// last measured: a neighbour's length changes about 1 px a frame while the card turns in depth;
 /// the drift over n frames grows as sqrt(n).
 constexpr float kLengthDrift = 1.f;
-/// An edge's line this many times farther from where the edge is expected than the card's edges
-/// may be (the shape model's guide): not the card's edge, which the guide allows for.
+/// An edge's line (or a hidden edge's placement in 3D, from the image-plane one) this many times
+/// farther from where the edge is expected than the card's edges may be (the shape model's
+/// guide): not the card's edge, which the guide allows for.
 constexpr float kOutlineFar = 2.f;
 /// The most a quad fitted on four edges may differ from the card's aspect in 3D (|log| of the
 /// ratio): over the 72 hard and unseen seeds, 7276 quads within 2 px of the card differed by at
@@ -260,13 +261,14 @@ bool placedInDepth(const QuadJudge& judge, EdgeRefinement& r) noexcept
     // Out of view, only where the card's recent shape agrees (no image evidence is possible).
     if (outOfView && !haveImage)
         return false;
-    // Farther from the image placement than the card moves from where it is expected, the 3D
-    // one is a wrong solution of the lines (its spread measures how unsure a right one is, not
-    // whether it is right).
+    // Farther from the image placement than twice the card moves from where it is expected, the
+    // 3D one is a wrong solution of the lines (its spread measures how unsure a right one is, not
+    // whether it is right); within that, the image placement (the similarity carry, blind to the
+    // card turning) may be the one that drifted, and the blend weighs the two.
     auto apart = [&](int i) {
         return std::hypot(placed.quad[i].x - image.quad[i].x, placed.quad[i].y - image.quad[i].y);
     };
-    if (haveImage && std::max(apart(k), apart((k + 1) % 4)) > judge.predictedGuide)
+    if (haveImage && std::max(apart(k), apart((k + 1) % 4)) > kOutlineFar * judge.predictedGuide)
         return false;
     const float drift = kLengthDrift * std::sqrt(static_cast<float>(judge.sinceMeasured + 1));
     if (haveImage && !blendHiddenEdge(image, drift, spread, placed))
