@@ -347,25 +347,27 @@ float FixedCascade::windowNorm(const std::int32_t* p, const std::uint32_t* q) co
 }
 
 // The inverse of OpenCV's runAt.
-int FixedCascade::evaluate(const std::int32_t* p, const std::uint32_t* q,
-                           int firstStage) const noexcept
+int FixedCascade::evaluate(const std::int32_t* p, const std::uint32_t* q, int firstStage,
+                           int endStage) const noexcept
 {
+    const int nstages = static_cast<int>(stages_.size());
+    const int end = endStage >= 0 && endStage < nstages ? endStage : nstages;
     const float vnf = windowNorm(p, q);
     if (vnf == 0.0f)
         return -1;
     // vnf is a float >= 2^-25 here: vnf * 2^48 is an integer (exponent arithmetic only).
     const auto k = static_cast<std::int64_t>(static_cast<double>(vnf) * kNormScale);
-    return stumps_ ? evaluateStumps(p, k, firstStage) : evaluateTrees(p, k, firstStage);
+    return stumps_ ? evaluateStumps(p, k, firstStage, end) : evaluateTrees(p, k, firstStage, end);
 }
 
-int FixedCascade::evaluateStumps(const std::int32_t* p, std::int64_t k,
-                                 int firstStage) const noexcept
+int FixedCascade::evaluateStumps(const std::int32_t* p, std::int64_t k, int firstStage,
+                                 int endStage) const noexcept
 {
     const int nstages = static_cast<int>(stages_.size());
     const FixedStump* s =
         stumpList_.data() +
         (firstStage < nstages ? stages_[static_cast<std::size_t>(firstStage)].first : 0);
-    for (int si = firstStage; si < nstages; ++si) {
+    for (int si = firstStage; si < endStage; ++si) {
         const FixedStage& st = stages_[static_cast<std::size_t>(si)];
         std::int64_t acc = 0;
         const FixedStump* end = s + st.count;
@@ -384,11 +386,10 @@ int FixedCascade::evaluateStumps(const std::int32_t* p, std::int64_t k,
     return 1;
 }
 
-int FixedCascade::evaluateTrees(const std::int32_t* p, std::int64_t k,
-                                int firstStage) const noexcept
+int FixedCascade::evaluateTrees(const std::int32_t* p, std::int64_t k, int firstStage,
+                                int endStage) const noexcept
 {
-    const int nstages = static_cast<int>(stages_.size());
-    for (int si = firstStage; si < nstages; ++si) {
+    for (int si = firstStage; si < endStage; ++si) {
         const FixedStage& st = stages_[static_cast<std::size_t>(si)];
         std::int64_t acc = 0;
         for (int i = 0; i < st.count; ++i) {

@@ -102,9 +102,10 @@ public:
     float windowNorm(const std::int32_t* sum, const std::uint32_t* sqsum) const noexcept;
 
     /// The window at `sum` / `sqsum`: 1 when it passes, -s when stage s rejects it, -1 also
-    /// when it is flat. Stages before firstStage count as passed.
-    int evaluate(const std::int32_t* sum, const std::uint32_t* sqsum,
-                 int firstStage = 0) const noexcept;
+    /// when it is flat. Stages before firstStage count as passed; with endStage >= 0, the
+    /// stages from endStage on too (1: it passed stages firstStage..endStage-1).
+    int evaluate(const std::int32_t* sum, const std::uint32_t* sqsum, int firstStage = 0,
+                 int endStage = -1) const noexcept;
 
     int windowWidth() const noexcept { return winW_; }
     int windowHeight() const noexcept { return winH_; }
@@ -126,8 +127,10 @@ private:
     void buildTrees(const HaarCascade& cascade, const std::vector<FixedFeature>& features);
     void sortTrees(const HaarCascade& cascade);
     void buildRowForm(const HaarCascade& cascade);
-    int evaluateStumps(const std::int32_t* p, std::int64_t k, int firstStage) const noexcept;
-    int evaluateTrees(const std::int32_t* p, std::int64_t k, int firstStage) const noexcept;
+    int evaluateStumps(const std::int32_t* p, std::int64_t k, int firstStage,
+                       int endStage) const noexcept;
+    int evaluateTrees(const std::int32_t* p, std::int64_t k, int firstStage,
+                      int endStage) const noexcept;
 
     int winW_ = 0;
     int winH_ = 0;

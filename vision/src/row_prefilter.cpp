@@ -205,7 +205,7 @@ RowPrefilter::RowPrefilter(int maxWindows)
 // Survivors cluster (faces, texture): each stage runs over the span from the first to the last
 // window still alive, while at least 1 / kAliveDivisor of the span is alive.
 int RowPrefilter::run(const FixedCascade& cascade, const ScaledIntegrals& tables, int y, int step,
-                      int j0, int j1, const std::uint8_t* wanted) noexcept
+                      int j0, int j1, const std::uint8_t* wanted, int endStage) noexcept
 {
     // A masked scan wants a few windows of a row: the span is cut to them, and the others in it
     // are dead from the start (no norm, not counted alive), so the stages run over the wanted
@@ -236,7 +236,8 @@ int RowPrefilter::run(const FixedCascade& cascade, const ScaledIntegrals& tables
     const bool split = step == 2;
     const std::int32_t* table = (split ? tables.splitSum() : tables.sum()) + row;
     const std::vector<FixedStage>& stages = cascade.stages();
-    const int nstages = static_cast<int>(stages.size());
+    const int nstages = endStage >= 0 ? std::min(endStage, static_cast<int>(stages.size()))
+                                      : static_cast<int>(stages.size());
     int lo = j0;
     int hi = j1;
     int si = 0;

@@ -27,8 +27,9 @@ public:
     /// evaluated (the others' result is -1, never to be read): a masked scan's rows are mostly
     /// windows it does not want. Returns how many stages were done; then result(j) and from(j)
     /// tell each wanted window's state.
+    /// With `endStage` >= 0, stages from endStage on are not done.
     int run(const FixedCascade& cascade, const ScaledIntegrals& tables, int y, int step, int j0,
-            int j1, const std::uint8_t* wanted = nullptr) noexcept;
+            int j1, const std::uint8_t* wanted = nullptr, int endStage = -1) noexcept;
 
     /// Window j after run(): 1 when it passed the stages done, 2 when a stage sum was too close
     /// to its threshold (the exact path continues from stage from(j)), else
