@@ -59,6 +59,9 @@ struct FaceDetector::Impl {
           rowWanted(static_cast<std::size_t>(o.maxFrameSize.width + 1), 0),
           coarseAlive{std::vector<std::uint8_t>(static_cast<std::size_t>(o.maxFrameSize.width + 2)),
                       std::vector<std::uint8_t>(static_cast<std::size_t>(o.maxFrameSize.width + 2))},
+          columnX(static_cast<std::size_t>(o.maxFrameSize.width + 1)),
+          columnMask0(columnX.size()),
+          columnMask1(columnX.size()),
           raw(static_cast<std::size_t>(o.maxRawHits)),
           faces(static_cast<std::size_t>(o.maxFaces))
     {
@@ -73,6 +76,7 @@ struct FaceDetector::Impl {
     // Coarse to fine: per window of the last two coarse rows, passed the first stages (and a
     // zero entry past the last window).
     std::vector<std::uint8_t> coarseAlive[2];
+    std::vector<int> columnX, columnMask0, columnMask1;  // prepareColumns
 
     std::vector<Rect> raw;
     int rawCount = 0;
@@ -252,6 +256,47 @@ struct FaceDetector::Impl {
         return wanted;
     }
 
+    // Coarse to fine: per window column x of the cursor's scale (shrunk-image pixels), its
+    // image x and the mask columns it covers (as windowWanted maps them), once per scale.
+    void prepareColumns(Size image, const WindowFilter& filter) noexcept
+    {
+        const Cursor& c = cursor;
+        const int mw = filter.mask != nullptr ? filter.mask->size().width : 0;
+        for (int x = 0; x < c.xEnd; ++x) {
+            const int bx = c.imageX(x);
+            const auto k = static_cast<std::size_t>(x);
+            columnX[k] = bx;
+            columnMask0[k] = bx * mw / image.width;
+            columnMask1[k] = ((bx + c.boxW) * mw + image.width - 1) / image.width;
+        }
+    }
+
+    // windowWanted for the window at column x (prepareColumns) of the row at image y `by`,
+    // whose mask rows are my0..my1.
+    bool columnWanted(const WindowFilter& filter, int x, int by, int my0, int my1) const noexcept
+    {
+        const Cursor& c = cursor;
+        const auto k = static_cast<std::size_t>(x);
+        const int cx = columnX[k] + c.boxW / 2;
+        const int cy = by + c.boxH / 2;
+        for (const Rect& e : filter.exclude)
+            if (cx >= e.x && cx < e.x + e.width && cy >= e.y && cy < e.y + e.height)
+                return false;
+        return filter.mask == nullptr ||
+               filter.mask->maskFraction({columnMask0[k], my0, columnMask1[k] - columnMask0[k],
+                                          my1 - my0}) >= filter.minFraction;
+    }
+
+    // The mask rows of the cursor's row (windowWanted's mapping).
+    void maskRows(Size image, const WindowFilter& filter, int& my0, int& my1) const noexcept
+    {
+        const Cursor& c = cursor;
+        const int by = c.imageY();
+        const int mh = filter.mask != nullptr ? filter.mask->size().height : 0;
+        my0 = by * mh / image.height;
+        my1 = ((by + c.boxH) * mh + image.height - 1) / image.height;
+    }
+
     // Whether `filter` lets the cursor's scale's window at image position (bx, by) through:
     // enough of the mask under it, its centre in no excluded box.
     bool windowWanted(Size image, const WindowFilter& filter, int bx, int by) const noexcept
@@ -324,6 +369,7 @@ struct FaceDetector::Impl {
         while (enterNextScale()) {
             const int rows = (c.yEnd + c.step - 1) / c.step;
             const int cols = (c.xEnd + c.step - 1) / c.step;
+            prepareColumns(gray.size(), filter);
             std::uint8_t* above = coarseAlive[0].data();  // coarse row r - 2
             std::uint8_t* here = coarseAlive[1].data();   // coarse row r
             std::fill_n(above, cols + 1, 0);
@@ -368,9 +414,11 @@ struct FaceDetector::Impl {
         const int n = (c.xEnd + 1) / 2;  // coarse windows at x = 0, 2, ... < xEnd
         c.y = r * c.step;
         const int by = c.imageY();
+        int my0 = 0, my1 = 0;
+        maskRows(gray.size(), filter, my0, my1);
         int wanted = 0;
         for (int k = 0; k < n; ++k) {
-            const bool ok = windowWanted(gray.size(), filter, c.imageX(2 * k), by);
+            const bool ok = columnWanted(filter, 2 * k, by, my0, my1);
             rowWanted[static_cast<std::size_t>(k)] = ok;
             wanted += ok;
         }
@@ -409,6 +457,10 @@ struct FaceDetector::Impl {
         Cursor& c = cursor;
         const int per = 2 / c.step;
         bool ready = false;
+        c.y = r * c.step;
+        const int by = c.imageY();
+        int my0 = 0, my1 = 0;
+        maskRows(gray.size(), filter, my0, my1);
         for (int j = 0; j < cols; ++j) {
             // A coarse window that passed goes on from the stages it passed; one that did
             // not is rejected.
@@ -425,8 +477,7 @@ struct FaceDetector::Impl {
             if (!near)
                 continue;
             const int x = j * c.step;
-            c.y = r * c.step;
-            if (!passed && !windowWanted(gray.size(), filter, c.imageX(x), c.imageY()))
+            if (!passed && !columnWanted(filter, x, by, my0, my1))
                 continue;
             if (!ready) {
                 prepareGridRow(gray, r, prepared);
@@ -437,7 +488,7 @@ struct FaceDetector::Impl {
             const std::ptrdiff_t at = static_cast<std::ptrdiff_t>(c.y) * tables.stride() + x;
             if (cascade.evaluate(tables.sum() + at, tables.squaredSum() + at,
                                  passed ? kCoarseStages : 0) > 0)
-                addRawHit({c.imageX(x), c.imageY(), c.boxW, c.boxH});
+                addRawHit({columnX[static_cast<std::size_t>(x)], by, c.boxW, c.boxH});
         }
     }
 
