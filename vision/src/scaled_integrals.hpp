@@ -41,7 +41,6 @@ public:
 
 private:
     void shrinkRow(int y) noexcept;
-    const std::uint16_t* horizontalPass(int sourceRow) noexcept;
     void integrateRow(int y) noexcept;
     void deinterleaveRow(int y) noexcept;
     void zeroRow(int y) noexcept;
@@ -59,11 +58,8 @@ private:
     std::vector<std::int32_t> sumSplit_;
     std::vector<int> xofs0_, xofs1_, yofs0_, yofs1_;
     std::vector<std::int32_t> xw0_, xw1_, yw0_, yw1_;
-    /// The resize's horizontal pass of the last two source rows (a shrunk row reads two, and
-    /// the next shrunk row mostly one of them again): rows of scaledStride_ values.
-    std::vector<std::uint16_t> horizontal_;
-    int horizontalRow_[2] = {-1, -1};  ///< the source row each slot holds; -1: none
-    int horizontalOld_ = 0;            ///< the slot used least recently
+    /// The resize's vertical pass of the two source rows of the shrunk row being made.
+    std::vector<std::uint16_t> vertical_;
 };
 
 }  // namespace vision
