@@ -260,6 +260,36 @@ TEST(FaceDetector, IntegralTablesOfABandGiveTheWholeTablesWindowSums)
     }
 }
 
+TEST(FaceDetector, TheTableSplitFourWaysHoldsTheSumTablesEntries)
+{
+    // Every entry of the sum table at its place in the table deinterleaved 4 ways (columns of
+    // x mod 4 = m from m * quarter on), for shrunk widths of every residue mod 4, whole and by
+    // a band of rows; and the 2-way table alongside.
+    const Gray g = randomImage(61, 47, 13);
+    for (const Size scaled : {Size{61, 47}, Size{60, 40}, Size{59, 39}, Size{58, 38}}) {
+        for (const bool band : {false, true}) {
+            ScaledIntegrals t({64, 48}, true);
+            t.begin(g.view(), scaled.width, scaled.height, true, true);
+            const int top = band ? 7 : 0;
+            t.prepareRows(top, scaled.height);
+            const int stride = t.stride();
+            const int quarter = (stride + 3) / 4;
+            ASSERT_EQ(t.split4Stride(), 4 * quarter);
+            ASSERT_GE(t.split4Stride(), stride);
+            const int half = (stride + 1) / 2;
+            for (int y = top; y <= scaled.height; ++y) {
+                for (int x = 0; x <= scaled.width; ++x) {
+                    const std::int32_t plain = t.sum()[y * stride + x];
+                    EXPECT_EQ(t.split4Sum()[y * t.split4Stride() + (x & 3) * quarter + (x >> 2)],
+                              plain)
+                        << scaled.width << " at " << x << "," << y;
+                    EXPECT_EQ(t.splitSum()[y * stride + (x & 1 ? half : 0) + (x >> 1)], plain);
+                }
+            }
+        }
+    }
+}
+
 TEST(FaceDetector, IntegralTablesPastTwoToThe31AreExactModuloTwoToThe32)
 {
     // A white 4096x2304 frame sums to 2.4e9 > 2^31: the tables wrap (in unsigned arithmetic,
@@ -342,7 +372,7 @@ PrefilterCount comparePrefilterRows(const FixedCascade& c, Size maxFrameSize, co
 {
     ScaledIntegrals t(maxFrameSize, true);
     RowPrefilter prefilter(maxFrameSize.width + 1);
-    t.prepare(g.view(), g.width, g.height, step == 2);
+    t.prepare(g.view(), g.width, g.height, step == 2, step == 4);
     const int j1 = (g.width + 1 - c.windowWidth() + step - 1) / step;
     std::vector<std::uint8_t> wanted(static_cast<std::size_t>(maxFrameSize.width + 1), 1);
     PrefilterCount count;
@@ -384,14 +414,15 @@ void compareRowPrefilter(const char* path)
         const Size maxFrameSize{160, 120};
         const FixedCascade cascade(c, maxFrameSize.width + 1, true);
         ASSERT_TRUE(cascade.rowForm());
-        // An even and an odd size (the deinterleaved table's last column), both steps, and a
-        // row taken up after its first windows (an incremental scan resuming).
+        // An even and an odd size (the deinterleaved table's last column), the steps 1 and 2
+        // and 4 (a coarse scan's windows at a step-2 scale), and a row taken up after its
+        // first windows (an incremental scan resuming).
         const Gray images[] = {randomImage(160, 120, 11), randomImage(131, 97, 12)};
         for (const Gray& g : images) {
-            for (const int step : {1, 2})
+            for (const int step : {1, 2, 4})
                 hits += comparePrefilterRows(cascade, maxFrameSize, g, step, 0).passed;
             hits += comparePrefilterRows(cascade, maxFrameSize, g, 2, 5).passed;
-            for (const int step : {1, 2})
+            for (const int step : {1, 2, 4})
                 hits += comparePrefilterRows(cascade, maxFrameSize, g, step, 0, true).passed;
         }
     }

@@ -170,6 +170,10 @@ RowFeature FixedCascade::rowFeature(const HaarFeature& f) const
     const int half = (stride_ + 1) / 2;
     // Column c of the deinterleaved table: even columns first, odd ones from `half` on.
     auto split = [&](int r, int c) { return r * stride_ + (c & 1 ? half : 0) + (c >> 1); };
+    // Deinterleaved 4 ways: column c in part c mod 4, each part `quarter` entries long, rows
+    // 4 * quarter entries apart (ScaledIntegrals::split4Stride()).
+    const int quarter = (stride_ + 3) / 4;
+    auto split4 = [&](int r, int c) { return r * 4 * quarter + (c & 3) * quarter + (c >> 2); };
     for (int i = 0; i < f.rectCount; ++i) {
         const HaarRect& r = f.rects[static_cast<std::size_t>(i)];
         out.weight[i] = static_cast<std::int32_t>(r.weight);
@@ -178,6 +182,7 @@ RowFeature FixedCascade::rowFeature(const HaarFeature& f) const
         for (int k = 0; k < 4; ++k) {
             out.plain[i][k] = ys[k] * stride_ + xs[k];
             out.split[i][k] = split(ys[k], xs[k]);
+            out.split4[i][k] = split4(ys[k], xs[k]);
         }
     }
     return out;

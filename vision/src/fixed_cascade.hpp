@@ -18,11 +18,13 @@ struct FixedFeature {
     int rectCount;
 };
 
-/// A feature for the row prefilter: offsets in the plain table (step-1 scales) and in the
-/// column-deinterleaved one (step-2 scales), so the windows of a row are consecutive entries.
+/// A feature for the row prefilter: offsets in the plain table (step-1 scales), in the
+/// column-deinterleaved one (step-2 scales) and in the one deinterleaved 4 ways (windows 4 px
+/// apart: a coarse scan's), so the windows of a row are consecutive entries.
 struct RowFeature {
     std::int32_t plain[3][4];
     std::int32_t split[3][4];
+    std::int32_t split4[3][4];
     std::int32_t weight[3];
     bool twoRects;  ///< weight[2] == 0: most features; a kernel without the third rectangle
 };

@@ -62,8 +62,10 @@ ScaledIntegrals::ScaledIntegrals(Size maxFrameSize, bool splitTable)
     // Row 0 and column 0 of the tables stay zero.
     sum_.assign((maxW + 1) * (maxH + 1), 0);
     sqsum_.assign((maxW + 1) * (maxH + 1), 0);
-    if (splitTable)
+    if (splitTable) {
         sumSplit_.assign((maxW + 1) * (maxH + 1), 0);
+        sumSplit4_.assign(static_cast<std::size_t>(split4Stride()) * (maxH + 1), 0);
+    }
     for (auto* v : {&xofs0_, &xofs1_})
         v->assign(maxW, 0);
     for (auto* v : {&yofs0_, &yofs1_})
@@ -75,14 +77,17 @@ ScaledIntegrals::ScaledIntegrals(Size maxFrameSize, bool splitTable)
     vertical_.assign(maxW + 1, 0);
 }
 
-void ScaledIntegrals::prepare(const ConstImageView& gray, int dw, int dh, bool split) noexcept
+void ScaledIntegrals::prepare(const ConstImageView& gray, int dw, int dh, bool split,
+                              bool split4) noexcept
 {
-    begin(gray, dw, dh, split);
+    begin(gray, dw, dh, split, split4);
     prepareRows(0, dh);
 }
 
-void ScaledIntegrals::begin(const ConstImageView& gray, int dw, int dh, bool split) noexcept
+void ScaledIntegrals::begin(const ConstImageView& gray, int dw, int dh, bool split,
+                            bool split4) noexcept
 {
+    split4_ = split4;
     gray_ = gray;
     dw_ = dw;
     dh_ = dh;
@@ -113,6 +118,8 @@ void ScaledIntegrals::prepareRows(int top, int bottom) noexcept
         integrateRow(y);
         if (split_)
             deinterleaveRow(y + 1);
+        if (split4_)
+            deinterleave4Row(y + 1);
     }
     ready_ = std::max(ready_, bottom);
 }
@@ -124,6 +131,8 @@ void ScaledIntegrals::zeroRow(int y) noexcept
     std::fill_n(sqsum_.data() + at, dw_ + 1, 0u);
     if (split_)
         deinterleaveRow(y);
+    if (split4_)
+        deinterleave4Row(y);
 }
 
 void ScaledIntegrals::shrinkRow(int y) noexcept
@@ -199,6 +208,29 @@ void ScaledIntegrals::deinterleaveRow(int y) noexcept
     }
     if ((dw & 1) == 0)
         even[dw >> 1] = in[dw];
+}
+
+void ScaledIntegrals::deinterleave4Row(int y) noexcept
+{
+    const int entries = dw_ + 1;  // columns 0..dw
+    const int quarter = (stride_ + 3) / 4;
+    const std::int32_t* __restrict in = sum_.data() + static_cast<std::ptrdiff_t>(y) * stride_;
+    std::int32_t* __restrict p0 =
+        sumSplit4_.data() + static_cast<std::ptrdiff_t>(y) * split4Stride();
+    std::int32_t* __restrict p1 = p0 + quarter;
+    std::int32_t* __restrict p2 = p1 + quarter;
+    std::int32_t* __restrict p3 = p2 + quarter;
+    // Groups of four columns (a loop the compiler vectorises), then the last few.
+    const int groups = entries / 4;
+    for (int i = 0; i < groups; ++i) {
+        p0[i] = in[4 * i];
+        p1[i] = in[4 * i + 1];
+        p2[i] = in[4 * i + 2];
+        p3[i] = in[4 * i + 3];
+    }
+    std::int32_t* const parts[4] = {p0, p1, p2, p3};
+    for (int x = 4 * groups; x < entries; ++x)
+        parts[x & 3][x >> 2] = in[x];
 }
 
 }  // namespace vision
