@@ -356,11 +356,11 @@ struct FaceDetector::Impl {
 
     // Coarse to fine (detectCoarseToFine): per scale, the coarse grid through the first
     // kCoarseStages stages, then the windows of the full grid next to a coarse window that
-    // passed. The coarse grid is every other row of the scan's grid and, in them, the windows
-    // 2 px apart in the shrunk image: every window of a step-2 scale, every other one of a
-    // step-1 scale, so the row prefilter takes them from the split table as it takes a step-2
-    // row. Rows in order, so the raw hits come in OpenCV's order: coarse row r, then the rows
-    // r - 1 (between two coarse rows) and r.
+    // passed. The coarse grid is every other row of the scan's grid and, in them, every other
+    // window: 2 px apart in the shrunk image at a step-1 scale, 4 px at a step-2 one, which
+    // the row prefilter takes from the table deinterleaved 2 or 4 ways. Rows in order, so the
+    // raw hits come in OpenCV's order: coarse row r, then the rows r - 1 (between two coarse
+    // rows) and r.
     void scanCoarseToFine(const ConstImageView& gray, const WindowFilter& filter) noexcept
     {
         startScan(gray.size());
@@ -390,35 +390,36 @@ struct FaceDetector::Impl {
         c.active = false;
     }
 
-    // The scale's table rows of grid row r, shrunk from `gray` on first use (with the split
-    // table: the coarse rows' windows are 2 px apart).
+    // The scale's table rows of grid row r, shrunk from `gray` on first use (with the table
+    // deinterleaved as the coarse rows' windows are apart: 2 ways, or 4 at a step-2 scale).
     void prepareGridRow(const ConstImageView& gray, int r, bool& prepared) noexcept
     {
         Cursor& c = cursor;
         if (!prepared) {
-            tables.begin(gray, c.dw, c.dh, cascade.rowForm());
+            tables.begin(gray, c.dw, c.dh, cascade.rowForm() && c.step == 1,
+                         cascade.rowForm() && c.step == 2);
             prepared = true;
         }
         c.y = r * c.step;
         tables.prepareRows(c.y, c.y + cascade.windowHeight());
     }
 
-    // Coarse row r: its windows 2 px apart through the first stages (the row prefilter, then
-    // the exact path to the last of them); alive[j] = 1 (j: the scan grid's window) where one
+    // Coarse row r: its even windows through the first stages (the row prefilter, then the
+    // exact path to the last of them); alive[j] = 1 (j: the scan grid's window) where one
     // passed. Returns how many passed.
     int coarseRow(const ConstImageView& gray, const WindowFilter& filter, int r,
                    std::uint8_t* alive, bool& prepared) noexcept
     {
         Cursor& c = cursor;
-        const int per = 2 / c.step;  // grid windows per coarse window
-        const int n = (c.xEnd + 1) / 2;  // coarse windows at x = 0, 2, ... < xEnd
+        const int apart = 2 * c.step;                   // coarse windows, in shrunk pixels
+        const int n = (c.xEnd + apart - 1) / apart;  // at x = 0, apart, ... < xEnd
         c.y = r * c.step;
         const int by = c.imageY();
         int my0 = 0, my1 = 0;
         maskRows(gray.size(), filter, my0, my1);
         int wanted = 0;
         for (int k = 0; k < n; ++k) {
-            const bool ok = columnWanted(filter, 2 * k, by, my0, my1);
+            const bool ok = columnWanted(filter, apart * k, by, my0, my1);
             rowWanted[static_cast<std::size_t>(k)] = ok;
             wanted += ok;
         }
@@ -427,8 +428,8 @@ struct FaceDetector::Impl {
         prepareGridRow(gray, r, prepared);
         windows += wanted;
         const int done = cascade.rowForm() && wanted >= RowPrefilter::kMinWindows
-                             ? prefilter.run(cascade, tables, c.y, 2, 0, n, rowWanted.data(),
-                                             kCoarseStages)
+                             ? prefilter.run(cascade, tables, c.y, apart, 0, n,
+                                             rowWanted.data(), kCoarseStages)
                              : 0;
         const std::ptrdiff_t row = static_cast<std::ptrdiff_t>(c.y) * tables.stride();
         int passed = 0;
@@ -438,11 +439,11 @@ struct FaceDetector::Impl {
             const int pre = done > 0 ? prefilter.result(k) : 1;
             int result = pre;
             if (pre == 2 || (pre == 1 && done < kCoarseStages)) {
-                const std::ptrdiff_t at = row + 2 * k;
+                const std::ptrdiff_t at = row + apart * k;
                 result = cascade.evaluate(tables.sum() + at, tables.squaredSum() + at,
                                           pre == 2 ? prefilter.from(k) : done, kCoarseStages);
             }
-            alive[k * per] = result > 0;
+            alive[2 * k] = result > 0;
             passed += result > 0;
         }
         return passed;
@@ -455,7 +456,6 @@ struct FaceDetector::Impl {
                  const std::uint8_t* above, const std::uint8_t* here, bool& prepared) noexcept
     {
         Cursor& c = cursor;
-        const int per = 2 / c.step;
         bool ready = false;
         c.y = r * c.step;
         const int by = c.imageY();
@@ -464,15 +464,13 @@ struct FaceDetector::Impl {
         for (int j = 0; j < cols; ++j) {
             // A coarse window that passed goes on from the stages it passed; one that did
             // not is rejected.
-            const bool coarse = above == nullptr && j % per == 0;
+            const bool coarse = above == nullptr && j % 2 == 0;
             const bool passed = coarse && here[j] != 0;
             if (coarse && !passed)
                 continue;
-            // The coarse windows within one step of it, along a row, a column or both (a
-            // step-2 scale's coarse rows hold every window: those above and below).
+            // The coarse windows within one step of it, along a row, a column or both.
             bool near = passed;
-            const int reach = per - 1;
-            for (int k = std::max(j - reach, 0); k <= j + reach && !near; ++k)
+            for (int k = std::max(j - 1, 0); k <= j + 1 && !near; ++k)
                 near = here[k] != 0 || (above != nullptr && above[k] != 0);
             if (!near)
                 continue;
