@@ -496,21 +496,18 @@ TEST(FaceDetector, AStageLimitDecidesTheStagesBeforeIt)
                 limited, beyond);
 }
 
-// A coarse-to-fine scan's raw hits are windows the full scan decides as hits, in its order (by
-// scale, row, window); `full` and `coarse` the raw hits of the two scans.
+// A coarse-to-fine scan's raw hits are among the full scan's, in its order (by scale, row,
+// window); `full` and `coarse` the raw hits of the two scans.
 void expectHitsOfTheFullScan(std::span<const Rect> full, std::span<const Rect> coarse)
 {
     auto from = full.begin();
     for (const Rect& r : coarse) {
         const auto it = std::find(from, full.end(), r);
-        if (it != full.end()) {
-            from = it + 1;
-            continue;
-        }
-        // The full scan skips the window after a first-stage rejection (OpenCV's scan): a hit
-        // there is not among its hits; one that is but came earlier is out of order.
-        EXPECT_EQ(std::find(full.begin(), full.end(), r), full.end())
-            << "out of order: " << r.x << "," << r.y << " " << r.width;
+        ASSERT_NE(it, full.end()) << (std::find(full.begin(), full.end(), r) == full.end()
+                                          ? "not a hit of the full scan: "
+                                          : "out of order: ")
+                                  << r.x << "," << r.y << " " << r.width;
+        from = it + 1;
     }
 }
 
@@ -533,8 +530,8 @@ TEST(FaceDetector, CoarseToFineFindsTheFullScansFaces)
 TEST(FaceDetector, CoarseToFineOnARealCascadeGivesHitsOfTheFullScanInItsOrder)
 {
     // The default cascade cut to 8 stages passes many windows of a textured image, deep past
-    // the coarse grid's 6 stages. The coarse scan's hits are the full scan's (bar windows the
-    // full scan skips), in its order. (Random texture is not a face: its hits do not cluster
+    // the coarse grid's 6 stages. The coarse scan's hits are among the full scan's (it skips
+    // the windows OpenCV's scan skips after a first-stage rejection), in its order. (Random texture is not a face: its hits do not cluster
     // as a face's do, so how many the coarse scan keeps says nothing of faces; the cold-start
     // tests of the tracker and mirror-eval track measure that, docs/ARM.md.)
     if (!std::filesystem::exists(kDefault))

@@ -22,10 +22,9 @@ namespace vision {
 namespace {
 
 // Coarse to fine (detectCoarseToFine): the coarse grid's windows go through this many stages
-// before their neighbours are looked at. On FGNet's first frame at 720x480 the five cold scans
-// (upright, +-15, +-25 degrees) keep every raw hit of the full scans with 4, 5 or 6 stages
-// (8: one of 3 hits of a tilted scan lost) and cost 748, 689 and 652 M aarch64 instructions
-// (the full scans 940 M).
+// before their neighbours are looked at. Fewer cost more (more survivors, whose neighbours are
+// decided one at a time), more lose faces: with 7 or 8 a cold start lost a face of facegen seed
+// 13 `three` for 25 frames and showed the photograph of seed 13 `four` for 50 (docs/ARM.md).
 constexpr int kCoarseStages = 6;
 
 const FaceDetectorOptions& checked(const FaceDetectorOptions& options)
@@ -451,7 +450,7 @@ struct FaceDetector::Impl {
 
     // Row r of the full grid: each window next to a coarse window that passed (in the coarse
     // rows `above` and `here`; `above` null for a coarse row itself, whose coarse windows are
-    // decided already) decided; hits added.
+    // decided already) decided, if OpenCV's scan evaluates it (below); hits added.
     void fineRow(const ConstImageView& gray, const WindowFilter& filter, int r, int cols,
                  const std::uint8_t* above, const std::uint8_t* here, bool& prepared) noexcept
     {
@@ -461,6 +460,32 @@ struct FaceDetector::Impl {
         const int by = c.imageY();
         int my0 = 0, my1 = 0;
         maskRows(gray.size(), filter, my0, my1);
+        const std::ptrdiff_t row = static_cast<std::ptrdiff_t>(c.y) * tables.stride();
+        // OpenCV's scan skips the window after one its first stage rejects (evaluateRow): a
+        // window is evaluated when wanted and the one before it was not evaluated and rejected
+        // at the first stage. So that the hits are the full scan's, a window is decided only
+        // if that scan evaluates it: the run of wanted windows rejected at the first stage
+        // before it is found (those windows' first stage decided here), and the evaluated ones
+        // alternate from its start. `known`: the last window whose place in that is known.
+        int known = -1;
+        bool knownEvaluated = false, knownFirstReject = false;
+        const auto firstStageRejects = [&](int k) {
+            const std::ptrdiff_t at = row + static_cast<std::ptrdiff_t>(k) * c.step;
+            return cascade.evaluate(tables.sum() + at, tables.squaredSum() + at, 0, 1) == 0;
+        };
+        const auto evaluatedByTheFullScan = [&](int j) {
+            int run = 0;
+            bool startEvaluated = true;  // the window after the run's start
+            for (int k = j - 1; k >= 0; --k, ++run) {
+                if (k == known) {
+                    startEvaluated = !(knownEvaluated && knownFirstReject);
+                    break;
+                }
+                if (!columnWanted(filter, k * c.step, by, my0, my1) || !firstStageRejects(k))
+                    break;
+            }
+            return run % 2 == 0 ? startEvaluated : !startEvaluated;
+        };
         for (int j = 0; j < cols; ++j) {
             // A coarse window that passed goes on from the stages it passed; one that did
             // not is rejected.
@@ -481,11 +506,19 @@ struct FaceDetector::Impl {
                 prepareGridRow(gray, r, prepared);
                 ready = true;
             }
+            const bool evaluated = evaluatedByTheFullScan(j);
+            known = j;
+            knownEvaluated = evaluated;
+            knownFirstReject = false;
+            if (!evaluated)
+                continue;
             if (!passed)
                 ++windows;
-            const std::ptrdiff_t at = static_cast<std::ptrdiff_t>(c.y) * tables.stride() + x;
-            if (cascade.evaluate(tables.sum() + at, tables.squaredSum() + at,
-                                 passed ? kCoarseStages : 0) > 0)
+            const std::ptrdiff_t at = row + x;
+            const int result = cascade.evaluate(tables.sum() + at, tables.squaredSum() + at,
+                                                passed ? kCoarseStages : 0);
+            knownFirstReject = result == 0;
+            if (result > 0)
                 addRawHit({columnX[static_cast<std::size_t>(x)], by, c.boxW, c.boxH});
         }
     }

@@ -76,9 +76,10 @@ public:
     /// detectMasked() decides it, only when it is, or is next to (one step along a row, a
     /// column or both), a coarse window that passed them. A face gives a cluster of raw hits
     /// whose neighbours pass the first stages, so this finds the faces of the full scan at a
-    /// fraction of its windows: its raw hits are the full scan's near the coarse windows that
-    /// passed, in the same order, and the same grouping makes the faces (the windows OpenCV
-    /// skips after a first-stage rejection are decided too, so a hit may be one it skipped). `mask` null: no masking.
+    /// fraction of its windows: its raw hits are those of the full scan near the coarse
+    /// windows that passed, in the same order (a window the full scan skips after a
+    /// first-stage rejection, as OpenCV's does, is skipped here too), and the same grouping
+    /// makes the faces. `mask` null: no masking.
     /// Returns the number of faces, or -1 on a bad image or mask. Abandons an incremental scan.
     int detectCoarseToFine(const ConstImageView& gray, const IntegralImage* mask, float minFraction,
                            std::span<const Rect> exclude) noexcept;
