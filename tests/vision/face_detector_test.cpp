@@ -260,6 +260,36 @@ TEST(FaceDetector, IntegralTablesOfABandGiveTheWholeTablesWindowSums)
     }
 }
 
+TEST(FaceDetector, TheTableSplitFourWaysHoldsTheSumTablesEntries)
+{
+    // Every entry of the sum table at its place in the table deinterleaved 4 ways (columns of
+    // x mod 4 = m from m * quarter on), for shrunk widths of every residue mod 4, whole and by
+    // a band of rows; and the 2-way table alongside.
+    const Gray g = randomImage(61, 47, 13);
+    for (const Size scaled : {Size{61, 47}, Size{60, 40}, Size{59, 39}, Size{58, 38}}) {
+        for (const bool band : {false, true}) {
+            ScaledIntegrals t({64, 48}, true);
+            t.begin(g.view(), scaled.width, scaled.height, true, true);
+            const int top = band ? 7 : 0;
+            t.prepareRows(top, scaled.height);
+            const int stride = t.stride();
+            const int quarter = (stride + 3) / 4;
+            ASSERT_EQ(t.split4Stride(), 4 * quarter);
+            ASSERT_GE(t.split4Stride(), stride);
+            const int half = (stride + 1) / 2;
+            for (int y = top; y <= scaled.height; ++y) {
+                for (int x = 0; x <= scaled.width; ++x) {
+                    const std::int32_t plain = t.sum()[y * stride + x];
+                    EXPECT_EQ(t.split4Sum()[y * t.split4Stride() + (x & 3) * quarter + (x >> 2)],
+                              plain)
+                        << scaled.width << " at " << x << "," << y;
+                    EXPECT_EQ(t.splitSum()[y * stride + (x & 1 ? half : 0) + (x >> 1)], plain);
+                }
+            }
+        }
+    }
+}
+
 TEST(FaceDetector, IntegralTablesPastTwoToThe31AreExactModuloTwoToThe32)
 {
     // A white 4096x2304 frame sums to 2.4e9 > 2^31: the tables wrap (in unsigned arithmetic,
@@ -342,7 +372,7 @@ PrefilterCount comparePrefilterRows(const FixedCascade& c, Size maxFrameSize, co
 {
     ScaledIntegrals t(maxFrameSize, true);
     RowPrefilter prefilter(maxFrameSize.width + 1);
-    t.prepare(g.view(), g.width, g.height, step == 2);
+    t.prepare(g.view(), g.width, g.height, step == 2, step == 4);
     const int j1 = (g.width + 1 - c.windowWidth() + step - 1) / step;
     std::vector<std::uint8_t> wanted(static_cast<std::size_t>(maxFrameSize.width + 1), 1);
     PrefilterCount count;
@@ -384,14 +414,15 @@ void compareRowPrefilter(const char* path)
         const Size maxFrameSize{160, 120};
         const FixedCascade cascade(c, maxFrameSize.width + 1, true);
         ASSERT_TRUE(cascade.rowForm());
-        // An even and an odd size (the deinterleaved table's last column), both steps, and a
-        // row taken up after its first windows (an incremental scan resuming).
+        // An even and an odd size (the deinterleaved table's last column), the steps 1 and 2
+        // and 4 (a coarse scan's windows at a step-2 scale), and a row taken up after its
+        // first windows (an incremental scan resuming).
         const Gray images[] = {randomImage(160, 120, 11), randomImage(131, 97, 12)};
         for (const Gray& g : images) {
-            for (const int step : {1, 2})
+            for (const int step : {1, 2, 4})
                 hits += comparePrefilterRows(cascade, maxFrameSize, g, step, 0).passed;
             hits += comparePrefilterRows(cascade, maxFrameSize, g, 2, 5).passed;
-            for (const int step : {1, 2})
+            for (const int step : {1, 2, 4})
                 hits += comparePrefilterRows(cascade, maxFrameSize, g, step, 0, true).passed;
         }
     }
@@ -423,6 +454,135 @@ TEST(FaceDetector, RowPrefilterLeavesStageSumsOnTheThresholdToTheExactPath)
         EXPECT_GT(n.passed, 3);
         EXPECT_EQ(n.parked, n.passed) << step;
     }
+}
+
+TEST(FaceDetector, AStageLimitDecidesTheStagesBeforeIt)
+{
+    // evaluate(.., first, end) and the prefilter's run(.., end): a window rejected before the
+    // limit as without it, one that passes the stages before it passes (1).
+    if (!std::filesystem::exists(kDefault))
+        GTEST_SKIP() << "opencv-data not installed";
+    const HaarCascade c = loadHaarCascade(kDefault);
+    const Size maxFrameSize{160, 120};
+    const FixedCascade cascade(c, maxFrameSize.width + 1, true);
+    ScaledIntegrals t(maxFrameSize, true);
+    RowPrefilter prefilter(maxFrameSize.width + 1);
+    const Gray g = randomImage(160, 120, 21);
+    t.prepare(g.view(), g.width, g.height, true);
+    const int j1 = (g.width + 1 - cascade.windowWidth() + 1) / 2;
+    long limited = 0, beyond = 0;
+    for (const int end : {1, 3, 6}) {
+        for (int y = 0; y + cascade.windowHeight() <= g.height; ++y) {
+            const int done = prefilter.run(cascade, t, y, 2, 0, j1, nullptr, end);
+            EXPECT_LE(done, end);
+            for (int j = 0; j < j1; ++j) {
+                const std::ptrdiff_t at = static_cast<std::ptrdiff_t>(y) * t.stride() + 2 * j;
+                const int full = cascade.evaluate(t.sum() + at, t.squaredSum() + at);
+                const int expected = full == 1 || full <= -end ? 1 : full;
+                EXPECT_EQ(cascade.evaluate(t.sum() + at, t.squaredSum() + at, 0, end), expected);
+                const int pre = done > 0 ? prefilter.result(j) : 1;
+                const int from = pre == 1 ? done : prefilter.from(j);
+                const int ours =
+                    pre <= 0 ? pre
+                             : cascade.evaluate(t.sum() + at, t.squaredSum() + at, from, end);
+                EXPECT_EQ(ours, expected) << end << " at " << 2 * j << "," << y;
+                limited += expected == 1;
+                beyond += expected == 1 && full != 1;
+            }
+        }
+    }
+    EXPECT_GT(beyond, 100);  // windows the limit lets through that the cascade rejects later
+    std::printf("[ info ] %ld windows passed the limited stages, %ld of them rejected later\n",
+                limited, beyond);
+}
+
+// A coarse-to-fine scan's raw hits are among the full scan's, in its order (by scale, row,
+// window); `full` and `coarse` the raw hits of the two scans.
+void expectHitsOfTheFullScan(std::span<const Rect> full, std::span<const Rect> coarse)
+{
+    auto from = full.begin();
+    for (const Rect& r : coarse) {
+        const auto it = std::find(from, full.end(), r);
+        ASSERT_NE(it, full.end()) << (std::find(full.begin(), full.end(), r) == full.end()
+                                          ? "not a hit of the full scan: "
+                                          : "out of order: ")
+                                  << r.x << "," << r.y << " " << r.width;
+        from = it + 1;
+    }
+}
+
+TEST(FaceDetector, CoarseToFineFindsTheFullScansFaces)
+{
+    const HaarCascade c = parseHaarCascade(kEdgeCascade, "edge");
+    const Gray g = edgeImage();
+    FaceDetector full(c, smallOptions(1));
+    FaceDetector coarse(c, smallOptions(1));
+    full.detect(g.view());
+    ASSERT_GE(coarse.detectCoarseToFine(g.view(), nullptr, 0.f, {}), 1);
+    EXPECT_EQ(copyOf(coarse.faces()), copyOf(full.faces()));
+    EXPECT_LT(coarse.windowsEvaluated(), full.windowsEvaluated());
+    for (const Rect& r : coarse.rawHits()) {
+        EXPECT_LT(r.x, 36);
+        EXPECT_GT(r.x + r.width, 36);
+    }
+}
+
+TEST(FaceDetector, CoarseToFineOnARealCascadeGivesHitsOfTheFullScanInItsOrder)
+{
+    // The default cascade cut to 8 stages passes many windows of a textured image, deep past
+    // the coarse grid's 6 stages. The coarse scan's hits are among the full scan's (it skips
+    // the windows OpenCV's scan skips after a first-stage rejection), in its order. (Random texture is not a face: its hits do not cluster
+    // as a face's do, so how many the coarse scan keeps says nothing of faces; the cold-start
+    // tests of the tracker and mirror-eval track measure that, docs/ARM.md.)
+    if (!std::filesystem::exists(kDefault))
+        GTEST_SKIP() << "opencv-data not installed";
+    HaarCascade c = loadHaarCascade(kDefault);
+    c.stages.resize(8);
+    FaceDetectorOptions o;
+    o.maxFrameSize = {160, 120};
+    o.minNeighbors = 0;
+    o.maxRawHits = 100000;
+    o.maxFaces = 100000;
+    FaceDetector full(c, o);
+    FaceDetector coarse(c, o);
+    long fullHits = 0, coarseHits = 0;
+    for (const unsigned seed : {31u, 32u, 33u}) {
+        const Gray g = randomImage(160, 120, seed);
+        full.detect(g.view());
+        ASSERT_GE(coarse.detectCoarseToFine(g.view(), nullptr, 0.f, {}), 0);
+        expectHitsOfTheFullScan(full.rawHits(), coarse.rawHits());
+        fullHits += static_cast<long>(full.rawHits().size());
+        coarseHits += static_cast<long>(coarse.rawHits().size());
+    }
+    EXPECT_GT(coarseHits, 50);
+    std::printf("[ info ] raw hits: full scans %ld, coarse to fine %ld\n", fullHits, coarseHits);
+}
+
+TEST(FaceDetector, CoarseToFineSkipsUnmaskedAndExcludedWindows)
+{
+    const HaarCascade c = parseHaarCascade(kEdgeCascade, "edge");
+    Gray g(64, 48, 100);
+    // Two edges: one on the left half (masked out), one on the right.
+    for (int y = 16; y < 28; ++y) {
+        for (int x = 8; x < 20; ++x)
+            g.at(x, y) = x < 14 ? 230 : 20;
+        for (int x = 40; x < 52; ++x)
+            g.at(x, y) = x < 46 ? 230 : 20;
+    }
+    Gray right(32, 24, 0);
+    for (int y = 0; y < 24; ++y) {
+        for (int x = 16; x < 32; ++x)
+            right.at(x, y) = 255;
+    }
+    IntegralImage mask(Size{32, 24});
+    ASSERT_TRUE(mask.compute(right.view()));
+    FaceDetector d(c, smallOptions(0));
+    ASSERT_GT(d.detectCoarseToFine(g.view(), &mask, 0.9f, {}), 0);
+    for (const Rect& r : d.rawHits())
+        EXPECT_GE(r.x, 28) << r.x;
+    const Rect exclude[] = {{0, 0, 64, 48}};
+    EXPECT_EQ(d.detectCoarseToFine(g.view(), &mask, 0.9f, exclude), 0);
+    EXPECT_EQ(d.windowsEvaluated(), 0);
 }
 
 TEST(FaceDetector, FullScanFindsTheEdgeAndGroupsIt)
@@ -689,6 +849,7 @@ TEST(FaceDetector, NoHeapAllocationPerFrame)
     d.detect(g.view());
     d.detectMasked(g.view(), integral, 0.1f, exclude);
     d.detectFirst(g.view(), hit);
+    d.detectCoarseToFine(g.view(), &integral, 0.1f, exclude);
     while (!d.detectMaskedIncremental(g.view(), &integral, 0.1f, exclude, 100)) {
     }
     EXPECT_EQ(scope.counts().cxxNew, 0);

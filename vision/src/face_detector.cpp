@@ -21,6 +21,12 @@
 namespace vision {
 namespace {
 
+// Coarse to fine (detectCoarseToFine): the coarse grid's windows go through this many stages
+// before their neighbours are looked at. Fewer cost more (more survivors, whose neighbours are
+// decided one at a time), more lose faces: with 7 or 8 a cold start lost a face of facegen seed
+// 13 `three` for 25 frames and showed the photograph of seed 13 `four` for 50 (docs/ARM.md).
+constexpr int kCoarseStages = 6;
+
 const FaceDetectorOptions& checked(const FaceDetectorOptions& options)
 {
     if (!(options.scaleFactor > 1.0))
@@ -50,6 +56,11 @@ struct FaceDetector::Impl {
           prefilter(o.maxFrameSize.width + 1),
           grouping(o.maxRawHits),
           rowWanted(static_cast<std::size_t>(o.maxFrameSize.width + 1), 0),
+          coarseAlive{std::vector<std::uint8_t>(static_cast<std::size_t>(o.maxFrameSize.width + 2)),
+                      std::vector<std::uint8_t>(static_cast<std::size_t>(o.maxFrameSize.width + 2))},
+          columnX(static_cast<std::size_t>(o.maxFrameSize.width + 1)),
+          columnMask0(columnX.size()),
+          columnMask1(columnX.size()),
           raw(static_cast<std::size_t>(o.maxRawHits)),
           faces(static_cast<std::size_t>(o.maxFaces))
     {
@@ -61,6 +72,10 @@ struct FaceDetector::Impl {
     RowPrefilter prefilter;
     DetectionGrouping grouping;
     std::vector<std::uint8_t> rowWanted;  // per window of a row: not masked out nor excluded
+    // Coarse to fine: per window of the last two coarse rows, passed the first stages (and a
+    // zero entry past the last window).
+    std::vector<std::uint8_t> coarseAlive[2];
+    std::vector<int> columnX, columnMask0, columnMask1;  // prepareColumns
 
     std::vector<Rect> raw;
     int rawCount = 0;
@@ -231,32 +246,75 @@ struct FaceDetector::Impl {
             return j1 - j0;
         }
         const int by = c.imageY();
-        const Size maskSize = filter.mask != nullptr ? filter.mask->size() : Size{};
         int wanted = 0;
         for (int j = j0; j < j1; ++j) {
-            const int bx = c.imageX(j * c.step);
-            bool ok = true;
-            const int cx = bx + c.boxW / 2;
-            const int cy = by + c.boxH / 2;
-            for (const Rect& e : filter.exclude) {
-                if (cx >= e.x && cx < e.x + e.width && cy >= e.y && cy < e.y + e.height) {
-                    ok = false;
-                    break;
-                }
-            }
-            if (ok && filter.mask != nullptr) {
-                // The window mapped proportionally onto the mask, rounded outwards.
-                const int mx0 = bx * maskSize.width / image.width;
-                const int my0 = by * maskSize.height / image.height;
-                const int mx1 = ((bx + c.boxW) * maskSize.width + image.width - 1) / image.width;
-                const int my1 = ((by + c.boxH) * maskSize.height + image.height - 1) / image.height;
-                ok = filter.mask->maskFraction({mx0, my0, mx1 - mx0, my1 - my0}) >=
-                     filter.minFraction;
-            }
+            const bool ok = windowWanted(image, filter, c.imageX(j * c.step), by);
             rowWanted[static_cast<std::size_t>(j)] = ok;
             wanted += ok;
         }
         return wanted;
+    }
+
+    // Coarse to fine: per window column x of the cursor's scale (shrunk-image pixels), its
+    // image x and the mask columns it covers (as windowWanted maps them), once per scale.
+    void prepareColumns(Size image, const WindowFilter& filter) noexcept
+    {
+        const Cursor& c = cursor;
+        const int mw = filter.mask != nullptr ? filter.mask->size().width : 0;
+        for (int x = 0; x < c.xEnd; ++x) {
+            const int bx = c.imageX(x);
+            const auto k = static_cast<std::size_t>(x);
+            columnX[k] = bx;
+            columnMask0[k] = bx * mw / image.width;
+            columnMask1[k] = ((bx + c.boxW) * mw + image.width - 1) / image.width;
+        }
+    }
+
+    // windowWanted for the window at column x (prepareColumns) of the row at image y `by`,
+    // whose mask rows are my0..my1.
+    bool columnWanted(const WindowFilter& filter, int x, int by, int my0, int my1) const noexcept
+    {
+        const Cursor& c = cursor;
+        const auto k = static_cast<std::size_t>(x);
+        const int cx = columnX[k] + c.boxW / 2;
+        const int cy = by + c.boxH / 2;
+        for (const Rect& e : filter.exclude)
+            if (cx >= e.x && cx < e.x + e.width && cy >= e.y && cy < e.y + e.height)
+                return false;
+        return filter.mask == nullptr ||
+               filter.mask->maskFraction({columnMask0[k], my0, columnMask1[k] - columnMask0[k],
+                                          my1 - my0}) >= filter.minFraction;
+    }
+
+    // The mask rows of the cursor's row (windowWanted's mapping).
+    void maskRows(Size image, const WindowFilter& filter, int& my0, int& my1) const noexcept
+    {
+        const Cursor& c = cursor;
+        const int by = c.imageY();
+        const int mh = filter.mask != nullptr ? filter.mask->size().height : 0;
+        my0 = by * mh / image.height;
+        my1 = ((by + c.boxH) * mh + image.height - 1) / image.height;
+    }
+
+    // Whether `filter` lets the cursor's scale's window at image position (bx, by) through:
+    // enough of the mask under it, its centre in no excluded box.
+    bool windowWanted(Size image, const WindowFilter& filter, int bx, int by) const noexcept
+    {
+        const Cursor& c = cursor;
+        const int cx = bx + c.boxW / 2;
+        const int cy = by + c.boxH / 2;
+        for (const Rect& e : filter.exclude)
+            if (cx >= e.x && cx < e.x + e.width && cy >= e.y && cy < e.y + e.height)
+                return false;
+        if (filter.mask == nullptr)
+            return true;
+        // The window mapped proportionally onto the mask, rounded outwards.
+        const Size maskSize = filter.mask->size();
+        const int mx0 = bx * maskSize.width / image.width;
+        const int my0 = by * maskSize.height / image.height;
+        const int mx1 = ((bx + c.boxW) * maskSize.width + image.width - 1) / image.width;
+        const int my1 = ((by + c.boxH) * maskSize.height + image.height - 1) / image.height;
+        return filter.mask->maskFraction({mx0, my0, mx1 - mx0, my1 - my0}) >= filter.minFraction;
     }
 
     // The wanted windows of the cursor's row from its x on, each decided by the prefilter's
@@ -293,6 +351,176 @@ struct FaceDetector::Impl {
                 c.x += c.step;  // OpenCV skips past a first-stage rejection
         }
         return Stop::Done;
+    }
+
+    // Coarse to fine (detectCoarseToFine): per scale, the coarse grid through the first
+    // kCoarseStages stages, then the windows of the full grid next to a coarse window that
+    // passed. The coarse grid is every other row of the scan's grid and, in them, every other
+    // window: 2 px apart in the shrunk image at a step-1 scale, 4 px at a step-2 one, which
+    // the row prefilter takes from the table deinterleaved 2 or 4 ways. Rows in order, so the
+    // raw hits come in OpenCV's order: coarse row r, then the rows r - 1 (between two coarse
+    // rows) and r.
+    void scanCoarseToFine(const ConstImageView& gray, const WindowFilter& filter) noexcept
+    {
+        startScan(gray.size());
+        windows = 0;
+        Cursor& c = cursor;
+        while (enterNextScale()) {
+            const int rows = (c.yEnd + c.step - 1) / c.step;
+            const int cols = (c.xEnd + c.step - 1) / c.step;
+            prepareColumns(gray.size(), filter);
+            std::uint8_t* above = coarseAlive[0].data();  // coarse row r - 2
+            std::uint8_t* here = coarseAlive[1].data();   // coarse row r
+            std::fill_n(above, cols + 1, 0);
+            bool prepared = false;
+            int aliveAbove = 0;  // coarse windows that passed in row r - 2, and in row r
+            for (int r = 0; r <= rows; r += 2) {
+                std::fill_n(here, cols + 1, 0);
+                const int aliveHere = r < rows ? coarseRow(gray, filter, r, here, prepared) : 0;
+                if (r > 0 && aliveAbove + aliveHere > 0)
+                    fineRow(gray, filter, r - 1, cols, above, here, prepared);
+                if (aliveHere > 0)
+                    fineRow(gray, filter, r, cols, nullptr, here, prepared);
+                std::swap(above, here);
+                aliveAbove = aliveHere;
+            }
+            c.inScale = false;
+        }
+        c.active = false;
+    }
+
+    // The scale's table rows of grid row r, shrunk from `gray` on first use (with the table
+    // deinterleaved as the coarse rows' windows are apart: 2 ways, or 4 at a step-2 scale).
+    void prepareGridRow(const ConstImageView& gray, int r, bool& prepared) noexcept
+    {
+        Cursor& c = cursor;
+        if (!prepared) {
+            tables.begin(gray, c.dw, c.dh, cascade.rowForm() && c.step == 1,
+                         cascade.rowForm() && c.step == 2);
+            prepared = true;
+        }
+        c.y = r * c.step;
+        tables.prepareRows(c.y, c.y + cascade.windowHeight());
+    }
+
+    // Coarse row r: its even windows through the first stages (the row prefilter, then the
+    // exact path to the last of them); alive[j] = 1 (j: the scan grid's window) where one
+    // passed. Returns how many passed.
+    int coarseRow(const ConstImageView& gray, const WindowFilter& filter, int r,
+                   std::uint8_t* alive, bool& prepared) noexcept
+    {
+        Cursor& c = cursor;
+        const int apart = 2 * c.step;                   // coarse windows, in shrunk pixels
+        const int n = (c.xEnd + apart - 1) / apart;  // at x = 0, apart, ... < xEnd
+        c.y = r * c.step;
+        const int by = c.imageY();
+        int my0 = 0, my1 = 0;
+        maskRows(gray.size(), filter, my0, my1);
+        int wanted = 0;
+        for (int k = 0; k < n; ++k) {
+            const bool ok = columnWanted(filter, apart * k, by, my0, my1);
+            rowWanted[static_cast<std::size_t>(k)] = ok;
+            wanted += ok;
+        }
+        if (wanted == 0)
+            return 0;
+        prepareGridRow(gray, r, prepared);
+        windows += wanted;
+        const int done = cascade.rowForm() && wanted >= RowPrefilter::kMinWindows
+                             ? prefilter.run(cascade, tables, c.y, apart, 0, n,
+                                             rowWanted.data(), kCoarseStages)
+                             : 0;
+        const std::ptrdiff_t row = static_cast<std::ptrdiff_t>(c.y) * tables.stride();
+        int passed = 0;
+        for (int k = 0; k < n; ++k) {
+            if (!rowWanted[static_cast<std::size_t>(k)])
+                continue;
+            const int pre = done > 0 ? prefilter.result(k) : 1;
+            int result = pre;
+            if (pre == 2 || (pre == 1 && done < kCoarseStages)) {
+                const std::ptrdiff_t at = row + apart * k;
+                result = cascade.evaluate(tables.sum() + at, tables.squaredSum() + at,
+                                          pre == 2 ? prefilter.from(k) : done, kCoarseStages);
+            }
+            alive[2 * k] = result > 0;
+            passed += result > 0;
+        }
+        return passed;
+    }
+
+    // Row r of the full grid: each window next to a coarse window that passed (in the coarse
+    // rows `above` and `here`; `above` null for a coarse row itself, whose coarse windows are
+    // decided already) decided, if OpenCV's scan evaluates it (below); hits added.
+    void fineRow(const ConstImageView& gray, const WindowFilter& filter, int r, int cols,
+                 const std::uint8_t* above, const std::uint8_t* here, bool& prepared) noexcept
+    {
+        Cursor& c = cursor;
+        bool ready = false;
+        c.y = r * c.step;
+        const int by = c.imageY();
+        int my0 = 0, my1 = 0;
+        maskRows(gray.size(), filter, my0, my1);
+        const std::ptrdiff_t row = static_cast<std::ptrdiff_t>(c.y) * tables.stride();
+        // OpenCV's scan skips the window after one its first stage rejects (evaluateRow): a
+        // window is evaluated when wanted and the one before it was not evaluated and rejected
+        // at the first stage. So that the hits are the full scan's, a window is decided only
+        // if that scan evaluates it: the run of wanted windows rejected at the first stage
+        // before it is found (those windows' first stage decided here), and the evaluated ones
+        // alternate from its start. `known`: the last window whose place in that is known.
+        int known = -1;
+        bool knownEvaluated = false, knownFirstReject = false;
+        const auto firstStageRejects = [&](int k) {
+            const std::ptrdiff_t at = row + static_cast<std::ptrdiff_t>(k) * c.step;
+            return cascade.evaluate(tables.sum() + at, tables.squaredSum() + at, 0, 1) == 0;
+        };
+        const auto evaluatedByTheFullScan = [&](int j) {
+            int run = 0;
+            bool startEvaluated = true;  // the window after the run's start
+            for (int k = j - 1; k >= 0; --k, ++run) {
+                if (k == known) {
+                    startEvaluated = !(knownEvaluated && knownFirstReject);
+                    break;
+                }
+                if (!columnWanted(filter, k * c.step, by, my0, my1) || !firstStageRejects(k))
+                    break;
+            }
+            return run % 2 == 0 ? startEvaluated : !startEvaluated;
+        };
+        for (int j = 0; j < cols; ++j) {
+            // A coarse window that passed goes on from the stages it passed; one that did
+            // not is rejected.
+            const bool coarse = above == nullptr && j % 2 == 0;
+            const bool passed = coarse && here[j] != 0;
+            if (coarse && !passed)
+                continue;
+            // The coarse windows within one step of it, along a row, a column or both.
+            bool near = passed;
+            for (int k = std::max(j - 1, 0); k <= j + 1 && !near; ++k)
+                near = here[k] != 0 || (above != nullptr && above[k] != 0);
+            if (!near)
+                continue;
+            const int x = j * c.step;
+            if (!passed && !columnWanted(filter, x, by, my0, my1))
+                continue;
+            if (!ready) {
+                prepareGridRow(gray, r, prepared);
+                ready = true;
+            }
+            const bool evaluated = evaluatedByTheFullScan(j);
+            known = j;
+            knownEvaluated = evaluated;
+            knownFirstReject = false;
+            if (!evaluated)
+                continue;
+            if (!passed)
+                ++windows;
+            const std::ptrdiff_t at = row + x;
+            const int result = cascade.evaluate(tables.sum() + at, tables.squaredSum() + at,
+                                                passed ? kCoarseStages : 0);
+            knownFirstReject = result == 0;
+            if (result > 0)
+                addRawHit({columnX[static_cast<std::size_t>(x)], by, c.boxW, c.boxH});
+        }
     }
 
     void addRawHit(const Rect& r) noexcept
@@ -398,6 +626,20 @@ void FaceDetector::resetIncremental() noexcept
 bool FaceDetector::incrementalScanActive() const noexcept
 {
     return impl_->cursor.active;
+}
+
+int FaceDetector::detectCoarseToFine(const ConstImageView& gray, const IntegralImage* mask,
+                                     float minFraction, std::span<const Rect> exclude) noexcept
+{
+    Impl& d = *impl_;
+    if (!d.checkImage(gray))
+        return -1;
+    if (mask != nullptr && (mask->size().width <= 0 || mask->size().height <= 0)) {
+        d.setError("face detector: empty mask integral image");
+        return -1;
+    }
+    d.scanCoarseToFine(gray, {mask, minFraction, exclude});
+    return d.finish(gray.size());
 }
 
 bool FaceDetector::detectFirst(const ConstImageView& gray, Rect& hit) noexcept

@@ -97,6 +97,13 @@ long FaceSearch::scan(const Frame& frame) noexcept
 
 int FaceSearch::detect(const Frame& frame, std::span<const Rect> exclude) noexcept
 {
+    if (cold_) {
+        // A cold start scans the whole image in its one frame: coarse to fine, which finds the
+        // faces of the full scan at a fraction of its windows (§3; FaceDetector).
+        // Its mask is all set (prepareMask), so no window is looked up in it.
+        done_ = true;
+        return detector_.detectCoarseToFine(frame.gray, nullptr, 0.f, exclude);
+    }
     const bool haveMotion = frame.motion != nullptr;
     if (options_.detectionWindowBudget > 0) {
         // The scan spread over frames (a result only when a scan completes), so that no frame

@@ -170,6 +170,10 @@ RowFeature FixedCascade::rowFeature(const HaarFeature& f) const
     const int half = (stride_ + 1) / 2;
     // Column c of the deinterleaved table: even columns first, odd ones from `half` on.
     auto split = [&](int r, int c) { return r * stride_ + (c & 1 ? half : 0) + (c >> 1); };
+    // Deinterleaved 4 ways: column c in part c mod 4, each part `quarter` entries long, rows
+    // 4 * quarter entries apart (ScaledIntegrals::split4Stride()).
+    const int quarter = (stride_ + 3) / 4;
+    auto split4 = [&](int r, int c) { return r * 4 * quarter + (c & 3) * quarter + (c >> 2); };
     for (int i = 0; i < f.rectCount; ++i) {
         const HaarRect& r = f.rects[static_cast<std::size_t>(i)];
         out.weight[i] = static_cast<std::int32_t>(r.weight);
@@ -178,6 +182,7 @@ RowFeature FixedCascade::rowFeature(const HaarFeature& f) const
         for (int k = 0; k < 4; ++k) {
             out.plain[i][k] = ys[k] * stride_ + xs[k];
             out.split[i][k] = split(ys[k], xs[k]);
+            out.split4[i][k] = split4(ys[k], xs[k]);
         }
     }
     return out;
@@ -347,25 +352,27 @@ float FixedCascade::windowNorm(const std::int32_t* p, const std::uint32_t* q) co
 }
 
 // The inverse of OpenCV's runAt.
-int FixedCascade::evaluate(const std::int32_t* p, const std::uint32_t* q,
-                           int firstStage) const noexcept
+int FixedCascade::evaluate(const std::int32_t* p, const std::uint32_t* q, int firstStage,
+                           int endStage) const noexcept
 {
+    const int nstages = static_cast<int>(stages_.size());
+    const int end = endStage >= 0 && endStage < nstages ? endStage : nstages;
     const float vnf = windowNorm(p, q);
     if (vnf == 0.0f)
         return -1;
     // vnf is a float >= 2^-25 here: vnf * 2^48 is an integer (exponent arithmetic only).
     const auto k = static_cast<std::int64_t>(static_cast<double>(vnf) * kNormScale);
-    return stumps_ ? evaluateStumps(p, k, firstStage) : evaluateTrees(p, k, firstStage);
+    return stumps_ ? evaluateStumps(p, k, firstStage, end) : evaluateTrees(p, k, firstStage, end);
 }
 
-int FixedCascade::evaluateStumps(const std::int32_t* p, std::int64_t k,
-                                 int firstStage) const noexcept
+int FixedCascade::evaluateStumps(const std::int32_t* p, std::int64_t k, int firstStage,
+                                 int endStage) const noexcept
 {
     const int nstages = static_cast<int>(stages_.size());
     const FixedStump* s =
         stumpList_.data() +
         (firstStage < nstages ? stages_[static_cast<std::size_t>(firstStage)].first : 0);
-    for (int si = firstStage; si < nstages; ++si) {
+    for (int si = firstStage; si < endStage; ++si) {
         const FixedStage& st = stages_[static_cast<std::size_t>(si)];
         std::int64_t acc = 0;
         const FixedStump* end = s + st.count;
@@ -384,11 +391,10 @@ int FixedCascade::evaluateStumps(const std::int32_t* p, std::int64_t k,
     return 1;
 }
 
-int FixedCascade::evaluateTrees(const std::int32_t* p, std::int64_t k,
-                                int firstStage) const noexcept
+int FixedCascade::evaluateTrees(const std::int32_t* p, std::int64_t k, int firstStage,
+                                int endStage) const noexcept
 {
-    const int nstages = static_cast<int>(stages_.size());
-    for (int si = firstStage; si < nstages; ++si) {
+    for (int si = firstStage; si < endStage; ++si) {
         const FixedStage& st = stages_[static_cast<std::size_t>(si)];
         std::int64_t acc = 0;
         for (int i = 0; i < st.count; ++i) {

@@ -18,11 +18,13 @@ struct FixedFeature {
     int rectCount;
 };
 
-/// A feature for the row prefilter: offsets in the plain table (step-1 scales) and in the
-/// column-deinterleaved one (step-2 scales), so the windows of a row are consecutive entries.
+/// A feature for the row prefilter: offsets in the plain table (step-1 scales), in the
+/// column-deinterleaved one (step-2 scales) and in the one deinterleaved 4 ways (windows 4 px
+/// apart: a coarse scan's), so the windows of a row are consecutive entries.
 struct RowFeature {
     std::int32_t plain[3][4];
     std::int32_t split[3][4];
+    std::int32_t split4[3][4];
     std::int32_t weight[3];
     bool twoRects;  ///< weight[2] == 0: most features; a kernel without the third rectangle
 };
@@ -102,9 +104,10 @@ public:
     float windowNorm(const std::int32_t* sum, const std::uint32_t* sqsum) const noexcept;
 
     /// The window at `sum` / `sqsum`: 1 when it passes, -s when stage s rejects it, -1 also
-    /// when it is flat. Stages before firstStage count as passed.
-    int evaluate(const std::int32_t* sum, const std::uint32_t* sqsum,
-                 int firstStage = 0) const noexcept;
+    /// when it is flat. Stages before firstStage count as passed; with endStage >= 0, the
+    /// stages from endStage on too (1: it passed stages firstStage..endStage-1).
+    int evaluate(const std::int32_t* sum, const std::uint32_t* sqsum, int firstStage = 0,
+                 int endStage = -1) const noexcept;
 
     int windowWidth() const noexcept { return winW_; }
     int windowHeight() const noexcept { return winH_; }
@@ -126,8 +129,10 @@ private:
     void buildTrees(const HaarCascade& cascade, const std::vector<FixedFeature>& features);
     void sortTrees(const HaarCascade& cascade);
     void buildRowForm(const HaarCascade& cascade);
-    int evaluateStumps(const std::int32_t* p, std::int64_t k, int firstStage) const noexcept;
-    int evaluateTrees(const std::int32_t* p, std::int64_t k, int firstStage) const noexcept;
+    int evaluateStumps(const std::int32_t* p, std::int64_t k, int firstStage,
+                       int endStage) const noexcept;
+    int evaluateTrees(const std::int32_t* p, std::int64_t k, int firstStage,
+                      int endStage) const noexcept;
 
     int winW_ = 0;
     int winH_ = 0;

@@ -29,7 +29,7 @@ constexpr int kAliveDivisor = 4;
 // A feature's 12 corner pointers for the windows from `base` on, and its weights, as plain
 // locals: the compiler must see that the stage sums the kernels write do not move them.
 #define MIRROR_VJ_TAPS2(f, prefix)                                 \
-    const auto& prefix##o = split ? (f).split : (f).plain;         \
+    const auto& prefix##o = ways == 4 ? (f).split4 : ways == 2 ? (f).split : (f).plain; \
     const std::int32_t* const prefix##a0 = base + prefix##o[0][0]; \
     const std::int32_t* const prefix##a1 = base + prefix##o[0][1]; \
     const std::int32_t* const prefix##a2 = base + prefix##o[0][2]; \
@@ -59,7 +59,7 @@ constexpr int kAliveDivisor = 4;
     (MIRROR_VJ_FEATURE2(prefix, j) + \
      prefix##wc * MIRROR_VJ_RECT(prefix##c0, prefix##c1, prefix##c2, prefix##c3, j))
 
-MIRROR_SIMD_BODY void rowStumpPassBody(const RowStump& st, const std::int32_t* base, bool split,
+MIRROR_SIMD_BODY void rowStumpPassBody(const RowStump& st, const std::int32_t* base, int ways,
                                        int n, const float* __restrict vnf,
                                        std::int32_t* __restrict acc) noexcept
 {
@@ -91,7 +91,7 @@ MIRROR_SIMD_BODY void rowStumpPassBody(const RowStump& st, const std::int32_t* b
         acc[j] += toNode1 ? leaf1 : direct;                      \
     }
 
-MIRROR_SIMD_BODY void rowTreePassBody(const RowTree& t, const std::int32_t* base, bool split, int n,
+MIRROR_SIMD_BODY void rowTreePassBody(const RowTree& t, const std::int32_t* base, int ways, int n,
                                       const float* __restrict vnf,
                                       std::int32_t* __restrict acc) noexcept
 {
@@ -142,7 +142,7 @@ MIRROR_SIMD_BODY int settleStageBody(const std::int32_t* __restrict acc, int* __
 
 /// A stage's sums over windows [0, n): every weak classifier of stage `st` over the row.
 MIRROR_SIMD_BODY void stageSumsBody(const FixedCascade& cascade, const FixedStage& st,
-                                    const std::int32_t* base, bool split, int n,
+                                    const std::int32_t* base, int ways, int n,
                                     const float* __restrict vnf,
                                     std::int32_t* __restrict acc) noexcept
 {
@@ -150,19 +150,19 @@ MIRROR_SIMD_BODY void stageSumsBody(const FixedCascade& cascade, const FixedStag
     for (int i = st.first; i < st.first + st.count; ++i) {
         const auto k = static_cast<std::size_t>(i);
         if (cascade.stumps())
-            rowStumpPassBody(cascade.rowStumps()[k], base, split, n, vnf, acc);
+            rowStumpPassBody(cascade.rowStumps()[k], base, ways, n, vnf, acc);
         else
-            rowTreePassBody(cascade.rowTrees()[k], base, split, n, vnf, acc);
+            rowTreePassBody(cascade.rowTrees()[k], base, ways, n, vnf, acc);
     }
 }
 
 // The path for this CPU (simd.hpp): the bodies built for AVX2 or for the baseline.
 #if defined(__x86_64__)
 MIRROR_AVX2 void stageSumsAvx2(const FixedCascade& cascade, const FixedStage& st,
-                               const std::int32_t* base, bool split, int n,
+                               const std::int32_t* base, int ways, int n,
                                const float* __restrict vnf, std::int32_t* __restrict acc) noexcept
 {
-    stageSumsBody(cascade, st, base, split, n, vnf, acc);
+    stageSumsBody(cascade, st, base, ways, n, vnf, acc);
 }
 MIRROR_AVX2 int settleStageAvx2(const std::int32_t* __restrict acc, int* __restrict result,
                                 int* __restrict from, int n, int si, std::int32_t rowReject,
@@ -173,13 +173,13 @@ MIRROR_AVX2 int settleStageAvx2(const std::int32_t* __restrict acc, int* __restr
 #endif
 
 void stageSums(const FixedCascade& cascade, const FixedStage& st, const std::int32_t* base,
-               bool split, int n, const float* vnf, std::int32_t* acc) noexcept
+               int ways, int n, const float* vnf, std::int32_t* acc) noexcept
 {
 #if defined(__x86_64__)
     if (simd::hasAvx2())
-        return stageSumsAvx2(cascade, st, base, split, n, vnf, acc);
+        return stageSumsAvx2(cascade, st, base, ways, n, vnf, acc);
 #endif
-    stageSumsBody(cascade, st, base, split, n, vnf, acc);
+    stageSumsBody(cascade, st, base, ways, n, vnf, acc);
 }
 
 int settleStage(const std::int32_t* acc, int* result, int* from, int n, int si,
@@ -205,7 +205,7 @@ RowPrefilter::RowPrefilter(int maxWindows)
 // Survivors cluster (faces, texture): each stage runs over the span from the first to the last
 // window still alive, while at least 1 / kAliveDivisor of the span is alive.
 int RowPrefilter::run(const FixedCascade& cascade, const ScaledIntegrals& tables, int y, int step,
-                      int j0, int j1, const std::uint8_t* wanted) noexcept
+                      int j0, int j1, const std::uint8_t* wanted, int endStage) noexcept
 {
     // A masked scan wants a few windows of a row: the span is cut to them, and the others in it
     // are dead from the start (no norm, not counted alive), so the stages run over the wanted
@@ -233,10 +233,14 @@ int RowPrefilter::run(const FixedCascade& cascade, const ScaledIntegrals& tables
         from_[static_cast<std::size_t>(j)] = 0;
         alive += vnf != 0.0f;
     }
-    const bool split = step == 2;
-    const std::int32_t* table = (split ? tables.splitSum() : tables.sum()) + row;
+    // Windows `step` apart are consecutive entries of the table deinterleaved `step` ways.
+    const int ways = step == 4 ? 4 : step == 2 ? 2 : 1;
+    const std::int32_t* table =
+        ways == 4 ? tables.split4Sum() + static_cast<std::ptrdiff_t>(y) * tables.split4Stride()
+                  : (ways == 2 ? tables.splitSum() : tables.sum()) + row;
     const std::vector<FixedStage>& stages = cascade.stages();
-    const int nstages = static_cast<int>(stages.size());
+    const int nstages = endStage >= 0 ? std::min(endStage, static_cast<int>(stages.size()))
+                                      : static_cast<int>(stages.size());
     int lo = j0;
     int hi = j1;
     int si = 0;
@@ -251,7 +255,7 @@ int RowPrefilter::run(const FixedCascade& cascade, const ScaledIntegrals& tables
         const FixedStage& st = stages[static_cast<std::size_t>(si)];
         const std::int32_t* base = table + lo;
         std::int32_t* acc = acc_.data() + lo;
-        stageSums(cascade, st, base, split, n, norm_.data() + lo, acc);
+        stageSums(cascade, st, base, ways, n, norm_.data() + lo, acc);
         alive = settleStage(acc, result_.data() + lo, from_.data() + lo, n, si, st.rowReject,
                             st.rowPass);
     }

@@ -22,13 +22,15 @@ public:
     explicit RowPrefilter(int maxWindows);
 
     /// Evaluates stages 0.. of the windows j0 <= j < j1 of row y (window j at x = j * step) of
-    /// `tables` (prepared with the split table when step is 2) for a cascade with a row form.
+    /// `tables` (prepared with the split table when step is 2, the one split 4 ways when 4) for a
+    /// cascade with a row form.
     /// `wanted` (null: every window), indexed by j: only windows with wanted[j] != 0 are
     /// evaluated (the others' result is -1, never to be read): a masked scan's rows are mostly
     /// windows it does not want. Returns how many stages were done; then result(j) and from(j)
     /// tell each wanted window's state.
+    /// With `endStage` >= 0, stages from endStage on are not done.
     int run(const FixedCascade& cascade, const ScaledIntegrals& tables, int y, int step, int j0,
-            int j1, const std::uint8_t* wanted = nullptr) noexcept;
+            int j1, const std::uint8_t* wanted = nullptr, int endStage = -1) noexcept;
 
     /// Window j after run(): 1 when it passed the stages done, 2 when a stage sum was too close
     /// to its threshold (the exact path continues from stage from(j)), else

@@ -62,8 +62,10 @@ ScaledIntegrals::ScaledIntegrals(Size maxFrameSize, bool splitTable)
     // Row 0 and column 0 of the tables stay zero.
     sum_.assign((maxW + 1) * (maxH + 1), 0);
     sqsum_.assign((maxW + 1) * (maxH + 1), 0);
-    if (splitTable)
+    if (splitTable) {
         sumSplit_.assign((maxW + 1) * (maxH + 1), 0);
+        sumSplit4_.assign(static_cast<std::size_t>(split4Stride()) * (maxH + 1), 0);
+    }
     for (auto* v : {&xofs0_, &xofs1_})
         v->assign(maxW, 0);
     for (auto* v : {&yofs0_, &yofs1_})
@@ -72,17 +74,20 @@ ScaledIntegrals::ScaledIntegrals(Size maxFrameSize, bool splitTable)
         v->assign(maxW, 0);
     for (auto* v : {&yw0_, &yw1_})
         v->assign(maxH, 0);
-    horizontal_.assign(2 * maxW, 0);
+    vertical_.assign(maxW + 1, 0);
 }
 
-void ScaledIntegrals::prepare(const ConstImageView& gray, int dw, int dh, bool split) noexcept
+void ScaledIntegrals::prepare(const ConstImageView& gray, int dw, int dh, bool split,
+                              bool split4) noexcept
 {
-    begin(gray, dw, dh, split);
+    begin(gray, dw, dh, split, split4);
     prepareRows(0, dh);
 }
 
-void ScaledIntegrals::begin(const ConstImageView& gray, int dw, int dh, bool split) noexcept
+void ScaledIntegrals::begin(const ConstImageView& gray, int dw, int dh, bool split,
+                            bool split4) noexcept
 {
+    split4_ = split4;
     gray_ = gray;
     dw_ = dw;
     dh_ = dh;
@@ -91,7 +96,6 @@ void ScaledIntegrals::begin(const ConstImageView& gray, int dw, int dh, bool spl
     ready_ = -1;
     resizeTable(gray.width, dw, {xofs0_.data(), xofs1_.data(), xw0_.data(), xw1_.data()});
     resizeTable(gray.height, dh, {yofs0_.data(), yofs1_.data(), yw0_.data(), yw1_.data()});
-    horizontalRow_[0] = horizontalRow_[1] = -1;
 }
 
 void ScaledIntegrals::prepareRows(int top, int bottom) noexcept
@@ -114,6 +118,8 @@ void ScaledIntegrals::prepareRows(int top, int bottom) noexcept
         integrateRow(y);
         if (split_)
             deinterleaveRow(y + 1);
+        if (split4_)
+            deinterleave4Row(y + 1);
     }
     ready_ = std::max(ready_, bottom);
 }
@@ -125,6 +131,8 @@ void ScaledIntegrals::zeroRow(int y) noexcept
     std::fill_n(sqsum_.data() + at, dw_ + 1, 0u);
     if (split_)
         deinterleaveRow(y);
+    if (split4_)
+        deinterleave4Row(y);
 }
 
 void ScaledIntegrals::shrinkRow(int y) noexcept
@@ -135,38 +143,34 @@ void ScaledIntegrals::shrinkRow(int y) noexcept
         std::memcpy(out, gray_.row(y), static_cast<std::size_t>(dw));
         return;
     }
-    // The horizontal pass of each source row once per scale (consecutive shrunk rows share a
-    // source row while the scale is below 2), then the vertical pass over whole rows.
-    const std::uint16_t* __restrict h0 = horizontalPass(yofs0_[static_cast<std::size_t>(y)]);
-    const std::uint16_t* __restrict h1 = horizontalPass(yofs1_[static_cast<std::size_t>(y)]);
-    const std::uint32_t a = static_cast<std::uint32_t>(yw0_[static_cast<std::size_t>(y)]);
-    const std::uint32_t b = static_cast<std::uint32_t>(yw1_[static_cast<std::size_t>(y)]);
-    for (int x = 0; x < dw; ++x)
-        out[x] = static_cast<std::uint8_t>((h0[x] * a + h1[x] * b + (1u << 15)) >> 16);
-}
-
-const std::uint16_t* ScaledIntegrals::horizontalPass(int sourceRow) noexcept
-{
-    // Two slots, the least recently used one refilled: shrinkRow's second row never evicts its
-    // first. The values are the resize's horizontal sums, at most 255 x 256: 16 bits.
-    for (int k = 0; k < 2; ++k) {
-        if (horizontalRow_[k] == sourceRow) {
-            horizontalOld_ = 1 - k;
-            return horizontal_.data() + static_cast<std::ptrdiff_t>(k) * scaledStride_;
-        }
+    // OpenCV's order is the horizontal pass of each source row, then the vertical pass; both
+    // are exact integer sums with the 8-bit weights (a + b = 256, c0 + c1 = 256), so the
+    // vertical pass first gives the same integers: a * (c0 r0[x0] + c1 r0[x1]) +
+    // b * (c0 r1[x0] + c1 r1[x1]) = c0 (a r0[x0] + b r1[x0]) + c1 (a r0[x1] + b r1[x1]). The
+    // vertical pass runs over whole source rows (a loop the compiler vectorises), the
+    // gathering horizontal pass once per shrunk row instead of once per source row.
+    const std::uint8_t* __restrict r0 = gray_.row(yofs0_[static_cast<std::size_t>(y)]);
+    const std::uint8_t* __restrict r1 = gray_.row(yofs1_[static_cast<std::size_t>(y)]);
+    const auto a = static_cast<std::uint16_t>(yw0_[static_cast<std::size_t>(y)]);
+    const auto b = static_cast<std::uint16_t>(yw1_[static_cast<std::size_t>(y)]);
+    // At most 255 x 256: 16 bits.
+    std::uint16_t* __restrict v = vertical_.data();
+    const int width = gray_.width;
+    for (int x = 0; x < width; ++x)
+        v[x] = static_cast<std::uint16_t>(r0[x] * a + r1[x] * b);
+    v[width] = 0;  // read with weight 0 beside the last column
+    // The second source column is the first's neighbour (or the first itself at an edge, with
+    // weight 0), and c0 = 256 - c1: c0 p + c1 q = 256 p + c1 (q - p).
+    // (Plain pointers: a byte stored through `out` could otherwise alias the vectors'.)
+    const int* __restrict ofs = xofs0_.data();
+    const std::int32_t* __restrict weight = xw1_.data();
+    std::uint8_t* __restrict shrunk = out;
+    for (int x = 0; x < dw; ++x) {
+        const std::uint16_t* pair = v + ofs[x];
+        const std::int32_t p = pair[0];
+        const std::int32_t q = pair[1];
+        shrunk[x] = static_cast<std::uint8_t>((p * 256 + (q - p) * weight[x] + (1 << 15)) >> 16);
     }
-    const int k = horizontalOld_;
-    horizontalOld_ = 1 - k;
-    horizontalRow_[k] = sourceRow;
-    std::uint16_t* h = horizontal_.data() + static_cast<std::ptrdiff_t>(k) * scaledStride_;
-    const std::uint8_t* r = gray_.row(sourceRow);
-    for (int x = 0; x < dw_; ++x) {
-        const auto c0 = static_cast<std::uint32_t>(xw0_[static_cast<std::size_t>(x)]);
-        const auto c1 = static_cast<std::uint32_t>(xw1_[static_cast<std::size_t>(x)]);
-        h[x] = static_cast<std::uint16_t>(r[xofs0_[static_cast<std::size_t>(x)]] * c0 +
-                                          r[xofs1_[static_cast<std::size_t>(x)]] * c1);
-    }
-    return h;
 }
 
 void ScaledIntegrals::integrateRow(int y) noexcept
@@ -194,15 +198,39 @@ void ScaledIntegrals::deinterleaveRow(int y) noexcept
 {
     const int dw = dw_;
     const int half = (stride_ + 1) / 2;
-    const std::int32_t* in = sum_.data() + static_cast<std::ptrdiff_t>(y) * stride_;
-    std::int32_t* even = sumSplit_.data() + static_cast<std::ptrdiff_t>(y) * stride_;
-    std::int32_t* odd = even + half;
-    for (int x = 0; x + 1 <= dw; x += 2) {
-        even[x >> 1] = in[x];
-        odd[x >> 1] = in[x + 1];
+    const std::int32_t* __restrict in = sum_.data() + static_cast<std::ptrdiff_t>(y) * stride_;
+    std::int32_t* __restrict even = sumSplit_.data() + static_cast<std::ptrdiff_t>(y) * stride_;
+    std::int32_t* __restrict odd = even + half;
+    // Pairs of columns: a loop the compiler vectorises (the tables do not overlap).
+    for (int i = 0; i < (dw + 1) / 2; ++i) {
+        even[i] = in[2 * i];
+        odd[i] = in[2 * i + 1];
     }
     if ((dw & 1) == 0)
         even[dw >> 1] = in[dw];
+}
+
+void ScaledIntegrals::deinterleave4Row(int y) noexcept
+{
+    const int entries = dw_ + 1;  // columns 0..dw
+    const int quarter = (stride_ + 3) / 4;
+    const std::int32_t* __restrict in = sum_.data() + static_cast<std::ptrdiff_t>(y) * stride_;
+    std::int32_t* __restrict p0 =
+        sumSplit4_.data() + static_cast<std::ptrdiff_t>(y) * split4Stride();
+    std::int32_t* __restrict p1 = p0 + quarter;
+    std::int32_t* __restrict p2 = p1 + quarter;
+    std::int32_t* __restrict p3 = p2 + quarter;
+    // Groups of four columns (a loop the compiler vectorises), then the last few.
+    const int groups = entries / 4;
+    for (int i = 0; i < groups; ++i) {
+        p0[i] = in[4 * i];
+        p1[i] = in[4 * i + 1];
+        p2[i] = in[4 * i + 2];
+        p3[i] = in[4 * i + 3];
+    }
+    std::int32_t* const parts[4] = {p0, p1, p2, p3};
+    for (int x = 4 * groups; x < entries; ++x)
+        parts[x & 3][x >> 2] = in[x];
 }
 
 }  // namespace vision

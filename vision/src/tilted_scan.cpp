@@ -180,9 +180,14 @@ long TiltedScan::step(const Frame& frame, long budget) noexcept
                     static_cast<float>(size_.height) / kMaskSide, mask_.view());
     maskIntegral_.compute(mask_.view());
     const int excludedCount = excludeTracks(frame.tracks);
-    const bool completed = detector_->detectMaskedIncremental(
-        region, &maskIntegral_, std::max(options_.minMaskFraction, kTiltMinMaskFraction),
-        std::span<const Rect>(excluded_.data(), static_cast<std::size_t>(excludedCount)), budget);
+    const std::span<const Rect> excluded(excluded_.data(), static_cast<std::size_t>(excludedCount));
+    const float minFraction = std::max(options_.minMaskFraction, kTiltMinMaskFraction);
+    // A cold start's scans (the whole image, in its frame) go coarse to fine, as its upright
+    // scan does (FaceSearch).
+    const bool completed =
+        whole_ ? detector_->detectCoarseToFine(region, &maskIntegral_, minFraction, excluded) >= 0
+               : detector_->detectMaskedIncremental(region, &maskIntegral_, minFraction, excluded,
+                                                    budget);
     const long used = detector_->windowsEvaluated();
     if (!completed)
         return used;

@@ -70,6 +70,20 @@ public:
     /// True while an incremental scan is in progress (started, not completed).
     bool incrementalScanActive() const noexcept;
 
+    /// Coarse to fine (a cold start's scan of a whole image): every scale as detectMasked()
+    /// scans it, but first only every other window of every other row (a coarse grid) through
+    /// the cascade's first stages; a window of the full grid is then decided, exactly as
+    /// detectMasked() decides it, only when it is, or is next to (one step along a row, a
+    /// column or both), a coarse window that passed them. A face gives a cluster of raw hits
+    /// whose neighbours pass the first stages, so this finds the faces of the full scan at a
+    /// fraction of its windows: its raw hits are those of the full scan near the coarse
+    /// windows that passed, in the same order (a window the full scan skips after a
+    /// first-stage rejection, as OpenCV's does, is skipped here too), and the same grouping
+    /// makes the faces. `mask` null: no masking.
+    /// Returns the number of faces, or -1 on a bad image or mask. Abandons an incremental scan.
+    int detectCoarseToFine(const ConstImageView& gray, const IntegralImage* mask, float minFraction,
+                           std::span<const Rect> exclude) noexcept;
+
     /// First hit: scans like detect() and returns true at the first window that passes the
     /// cascade, with its box in `hit` (no grouping).
     bool detectFirst(const ConstImageView& gray, Rect& hit) noexcept;
