@@ -23,8 +23,9 @@ constexpr float kLengthDrift = 1.f;
 /// guide): not the card's edge, which the guide allows for.
 constexpr float kOutlineFar = 2.f;
 /// The most a quad fitted on four edges may differ from the card's aspect in 3D (|log| of the
-/// ratio): over the 72 hard and unseen seeds, 7276 quads within 2 px of the card differed by at
-/// most 0.033 once the estimate settled; 11 of 17 more than 6 px off by more than 0.05.
+/// ratio): over the 72 hard and unseen seeds, with 15 frames of aspect in the estimate, 7276
+/// quads within 2 px of the card differed by at most 0.033; 11 of 17 more than 6 px off by more
+/// than 0.05.
 constexpr double kMaxAspectMismatch = 0.05;
 /// The most |cos| of the angle in 3D between a quad's pairs of sides may be (about 3 degrees from
 /// a right angle): over the same seeds, right quads at most 0.048; 11 of the 17 far off above.
@@ -94,6 +95,20 @@ const char* implausibleQuad(const QuadFit& f, const QuadJudge& j) noexcept
     return nullptr;
 }
 
+/// How far (pixels) `p` lies outside the frame; negative inside it.
+float outsideFrame(Point2f p, Size frame) noexcept
+{
+    return std::max({-p.x, -p.y, p.x - static_cast<float>(frame.width - 1),
+                     p.y - static_cast<float>(frame.height - 1)});
+}
+
+/// Out of view farther than this (0.35 of the card's size), a corner or an edge without evidence
+/// is a guess from too little of the card.
+float farOutOfView(const QuadFit& f) noexcept
+{
+    return 0.35f * std::sqrt(std::max(f.area, 1.f));
+}
+
 /// Plausibility against the card's recent shape and the evidence around it.
 const char* unlikeTheCard(QuadFit& f, const QuadJudge& j) noexcept
 {
@@ -110,11 +125,10 @@ const char* unlikeTheCard(QuadFit& f, const QuadJudge& j) noexcept
     }
     // A corner out of view is extrapolated from the visible parts of its edges; found afresh
     // (no track to follow it out), one far outside is a guess from too little of them.
+    const float far = farOutOfView(f);
     if (!j.tracking) {
-        const float far = 0.35f * std::sqrt(std::max(f.area, 1.f));
         for (const Point2f& p : f.raw)
-            if (std::max({-p.x, -p.y, p.x - static_cast<float>(j.frame.width - 1),
-                          p.y - static_cast<float>(j.frame.height - 1)}) > far)
+            if (outsideFrame(p, j.frame) > far)
                 return "corner far out of view";
     }
     // Beyond §2: a quad fitted on four edges is the image of the card's rectangle
@@ -133,18 +147,13 @@ const char* unlikeTheCard(QuadFit& f, const QuadJudge& j) noexcept
     // An edge without image evidence lying on the frame border: the card is leaving the view and
     // that edge is unknowable. One that runs out of view from inside it, not carried with the
     // card, is the seed's line: the colour's hull clipped by the border, not the card's edge.
-    const float far = 0.35f * std::sqrt(std::max(f.area, 1.f));
-    auto outside = [&](Point2f p) {
-        return std::max({-p.x, -p.y, p.x - static_cast<float>(j.frame.width - 1),
-                         p.y - static_cast<float>(j.frame.height - 1)});
-    };
     for (int i = 0; i < 4; ++i) {
         if (f.refinement.fitted[i])
             continue;
         const Point2f a = f.refinement.quad[i], b = f.refinement.quad[(i + 1) % 4];
         if (nearBorder(a, j.frame) && nearBorder(b, j.frame) && i != f.inDepth)
             return "card leaving the frame";
-        if (i != f.carried && std::max(outside(a), outside(b)) > far)
+        if (i != f.carried && std::max(outsideFrame(a, j.frame), outsideFrame(b, j.frame)) > far)
             return "card leaving the frame";
     }
     if (f.fill < o.minFill)
