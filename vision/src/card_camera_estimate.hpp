@@ -45,7 +45,8 @@ public:
     bool placeHiddenEdge(const Quad& expected, EdgeRefinement& r, float& spread) const noexcept;
     /// How far a quad fitted on all four edges is from the image of the card: |log| of its sides'
     /// ratio in 3D (long over short, seen with the focal length) over the card's aspect. 0 when
-    /// not trusted, not yet settled (fewer than 15 frames of aspect) or degenerate.
+    /// not trusted, not yet settled (15 frames of aspect, the quads agreeing on the focal length
+    /// within 0.01) or degenerate.
     double aspectMismatch(const Quad& q) const noexcept;
     /// The same quad's sides' angle in 3D: |cos| of it (rectangleSkew), 0 for the card's right
     /// angle; 0 when not trusted, not yet settled or degenerate.
