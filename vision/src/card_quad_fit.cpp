@@ -208,21 +208,8 @@ int outlineAcrossTheCard(const QuadJudge& judge, EdgeRefinement& r) noexcept
 {
     const Quad& e = *judge.predicted;
     auto dist = [](Point2f p, Point2f q) { return std::hypot(p.x - q.x, p.y - q.y); };
-    // The expected quad's corner for each of r's: the cyclic order (either way round) nearest.
-    int shift = 0, step = 1;
-    float nearest = 1e30f;
-    for (int dir : {1, -1})
-        for (int s = 0; s < 4; ++s) {
-            float d = 0.f;
-            for (int i = 0; i < 4; ++i)
-                d += dist(r.quad[i], e[(s + dir * i + 4) % 4]);
-            if (d < nearest) {
-                nearest = d;
-                shift = s;
-                step = dir;
-            }
-        }
-    auto expected = [&](int i) { return e[(shift + step * i + 8) % 4]; };
+    const int s = bestShift(r.quad, e);  // r.quad[(i + s) % 4] is e[i]
+    auto expected = [&](int i) { return e[(i - s + 8) % 4]; };
     int outline = -1;
     for (int i = 0; i < 4; ++i) {
         const Point2f p0 = r.quad[i], p1 = r.quad[(i + 1) % 4];

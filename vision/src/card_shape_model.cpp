@@ -5,9 +5,6 @@
 
 namespace vision {
 
-namespace {
-
-/// The cyclic shift s pairing a[(i + s) % 4] with b[i] at the least summed squared distance.
 int bestShift(const Quad& a, const Quad& b) noexcept
 {
     int shift = 0;
@@ -25,6 +22,8 @@ int bestShift(const Quad& a, const Quad& b) noexcept
     }
     return shift;
 }
+
+namespace {
 
 /// bestShift after moving b's centroid onto a's: the pairing survives a motion of more than half
 /// the card's size (a reference quad from many frames ago).

@@ -75,6 +75,8 @@ private:
 /// Largest corner distance between two quads, their corners paired by the best cyclic shift (the
 /// top-left corner can change when the card turns through 45 degrees).
 float quadDistance(const Quad& a, const Quad& b) noexcept;
+/// The cyclic shift s pairing a[(i + s) % 4] with b[i] at the least summed squared distance.
+int bestShift(const Quad& a, const Quad& b) noexcept;
 
 /// An edge in view but without image evidence (under a hand) moves with the card: with exactly
 /// one edge of `r` not fitted, the two corners between its fitted edges and the same two corners
